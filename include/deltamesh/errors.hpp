@@ -1,0 +1,50 @@
+// Typed errors. Bad input is an exception carrying data; failing to reach a
+// quality target is a result, not an exception.
+#pragma once
+#include <cstddef>
+#include <stdexcept>
+#include <string>
+
+namespace deltamesh {
+
+// Base of every error the library throws on purpose.
+class Error : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// Malformed input file: names the file, the 1-based line and what was expected.
+class ParseError : public Error {
+ public:
+  ParseError(std::string file, std::size_t line, const std::string& problem)
+      : Error(file + ":" + std::to_string(line) + ": " + problem),
+        file_(std::move(file)), line_(line), problem_(problem) {}
+  const std::string& file() const { return file_; }
+  std::size_t line() const { return line_; }
+  const std::string& problem() const { return problem_; }
+
+ private:
+  std::string file_;
+  std::size_t line_;
+  std::string problem_;
+};
+
+// Input that parses but cannot be meshed (NaN, overflow-prone magnitude,
+// all points collinear, ...). `index` names the offending vertex when known.
+class InputError : public Error {
+ public:
+  explicit InputError(const std::string& what, std::size_t index = static_cast<std::size_t>(-1))
+      : Error(what), index_(index) {}
+  std::size_t index() const { return index_; }
+
+ private:
+  std::size_t index_;
+};
+
+// An output file could not be written.
+class IoError : public Error {
+ public:
+  using Error::Error;
+};
+
+}  // namespace deltamesh

@@ -1,0 +1,196 @@
+// The triangulation data structure: index-based, implicit half-edges with a
+// twin array, ghost triangles on a vertex at infinity, free list, compaction.
+// Topology only: no Delaunay knowledge lives here.
+#pragma once
+#include <array>
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "deltamesh/geometry.hpp"
+
+namespace deltamesh {
+
+// Where a point lies relative to the triangulation (result of Mesh::locate).
+struct Location {
+  enum class Kind : std::uint8_t {
+    InTriangle,  // strictly inside real triangle `tri`
+    OnEdge,      // in the open half-edge `edge` (its twin is the same edge)
+    OnVertex,    // coincides with `vertex`
+    Outside,     // outside the convex hull; `tri` is a ghost triangle whose
+                 // real edge the point sees strictly from outside
+  };
+  Kind kind = Kind::Outside;
+  TriId tri = kNone;
+  HalfEdgeId edge = kNone;
+  VertexId vertex = kNone;
+};
+
+// Per-half-edge flag bits.
+enum EdgeFlag : std::uint8_t {
+  kConstrained = 1,  // part of an input segment: never flipped
+};
+
+class Mesh {
+ public:
+  Mesh() = default;
+
+  // ---- read-only views -------------------------------------------------
+  std::size_t num_vertices() const { return points_.size(); }
+  std::span<const Point> points() const { return points_; }
+  const Point& point(VertexId v) const { return points_[v]; }
+
+  // Triangle slots, including dead and (before compact()) ghost triangles.
+  std::size_t num_triangle_slots() const { return tri_v_.size() / 3; }
+  // Live real triangles (neither dead nor ghost).
+  std::size_t num_triangles() const { return live_real_; }
+  bool is_dead(TriId t) const { return tri_v_[3 * t] == kNone; }
+  bool is_ghost(TriId t) const {
+    return tri_v_[3 * t] == kInfinite || tri_v_[3 * t + 1] == kInfinite || tri_v_[3 * t + 2] == kInfinite;
+  }
+  bool is_real(TriId t) const { return !is_dead(t) && !is_ghost(t); }
+  std::array<VertexId, 3> triangle(TriId t) const {
+    return {tri_v_[3 * t], tri_v_[3 * t + 1], tri_v_[3 * t + 2]};
+  }
+  // Flat vertex array, 3 per triangle slot (raw: may contain kNone/kInfinite).
+  std::span<const VertexId> triangle_vertices() const { return tri_v_; }
+
+  VertexId origin(HalfEdgeId e) const { return tri_v_[e]; }
+  VertexId dest(HalfEdgeId e) const { return tri_v_[next_edge(e)]; }
+  // The opposite half-edge, or kNone on the boundary of a compacted mesh.
+  HalfEdgeId twin(HalfEdgeId e) const { return twin_[e]; }
+  // One outgoing half-edge of v (kNone when v is in no triangle). In a
+  // compacted mesh, for a boundary vertex it is the most clockwise one, so a
+  // counter-clockwise rotation from it meets every triangle around v.
+  HalfEdgeId out_edge(VertexId v) const { return vert_edge_[v]; }
+  // Next outgoing half-edge counter-clockwise around origin(e); kNone at a boundary.
+  HalfEdgeId rotate_ccw(HalfEdgeId e) const { return twin_[prev_edge(e)]; }
+  // Next outgoing half-edge clockwise around origin(e); kNone at a boundary.
+  HalfEdgeId rotate_cw(HalfEdgeId e) const {
+    const HalfEdgeId t = twin_[e];
+    return t == kNone ? kNone : next_edge(t);
+  }
+  // The neighbour across half-edge e (kNone on the boundary).
+  TriId neighbor(HalfEdgeId e) const { return twin_[e] == kNone ? kNone : tri_of(twin_[e]); }
+
+  bool has_edge_flags() const { return !edge_flags_.empty(); }
+  std::uint8_t edge_flags(HalfEdgeId e) const { return edge_flags_.empty() ? 0 : edge_flags_[e]; }
+  bool is_constrained(HalfEdgeId e) const { return (edge_flags(e) & kConstrained) != 0; }
+
+  // Calls f(e) for each outgoing half-edge of v, counter-clockwise (rotary
+  // traversal, §1.2.1). Stops early when f returns false.
+  template <class F>
+  void for_each_out_edge(VertexId v, F&& f) const {
+    const HalfEdgeId start = vert_edge_[v];
+    if (start == kNone) return;
+    HalfEdgeId e = start;
+    do {
+      if (!f(e)) return;
+      e = rotate_ccw(e);
+    } while (e != kNone && e != start);
+  }
+  // The half-edge from a to b, or kNone (rotary traversal around a).
+  HalfEdgeId find_edge(VertexId a, VertexId b) const;
+
+  // ---- construction ------------------------------------------------------
+  VertexId add_vertex(Point p) {
+    points_.push_back(p);
+    vert_edge_.push_back(kNone);
+    return static_cast<VertexId>(points_.size() - 1);
+  }
+  void reserve(std::size_t vertices, std::size_t triangles);
+  // New triangle (a, b, c), counter-clockwise, twins unset; reuses a dead slot.
+  TriId add_triangle(VertexId a, VertexId b, VertexId c);
+  void remove_triangle(TriId t);
+  void link(HalfEdgeId e, HalfEdgeId f) {
+    twin_[e] = f;
+    twin_[f] = e;
+  }
+  void set_out_edge(VertexId v, HalfEdgeId e) { vert_edge_[v] = e; }
+  void set_edge_flags(HalfEdgeId e, std::uint8_t flags);
+
+  // ---- topological operations ----------------------------------------------
+  // Flips the edge of half-edge e = (a,b) between triangles (a,b,c) and (b,a,d)
+  // into (c,d). Both triangles keep their slots. Returns the half-edge c->d.
+  // The caller guarantees the quadrilateral is strictly convex.
+  HalfEdgeId flip(HalfEdgeId e);
+  // Splits triangle t at new vertex p into three (t keeps one slot). Returns
+  // the half-edge p -> (first vertex of t).
+  HalfEdgeId split_triangle(TriId t, VertexId p);
+  // Splits the edge of half-edge e at new vertex p (both sides when it has a
+  // twin). Returns the half-edge p -> dest(e).
+  HalfEdgeId split_edge(HalfEdgeId e, VertexId p);
+
+  // Exact point location by a visibility walk from triangle `start` (any live
+  // triangle when kNone). Needs ghost triangles (a closed triangulation).
+  // Terminates on any triangulation (the walk picks its first edge test at
+  // random, which rules out cycles with probability 1 and is Delaunay-proof).
+  Location locate(const Point& p, TriId start = kNone) const;
+
+  // Drops dead and ghost triangles, renumbers triangles, sets hull twins to
+  // kNone and points boundary vertices' out_edge at their most clockwise edge.
+  void compact();
+  bool compacted() const { return compacted_; }
+
+  // ---- bulk access for algorithm code (src/algo) ----------------------------
+  // The flat arrays, for loops that are hot enough to matter. Algorithms keep
+  // the invariants the validator checks.
+  std::vector<Point>& points_mut() { return points_; }
+  std::vector<VertexId>& tri_v_mut() { return tri_v_; }
+  std::vector<HalfEdgeId>& twin_mut() { return twin_; }
+  std::vector<HalfEdgeId>& vert_edge_mut() { return vert_edge_; }
+  std::vector<std::uint8_t>& edge_flags_mut() { return edge_flags_; }
+  // Recounts live real triangles after bulk edits through the *_mut arrays.
+  void recount();
+  void set_live_real(std::size_t n) { live_real_ = n; }
+  std::size_t live_real() const { return live_real_; }
+
+  // Bytes held by the mesh's arrays (capacity), for memory reports.
+  std::size_t memory_bytes() const;
+
+  // ---- data carried from the input to the output ----------------------------
+  // Per-vertex boundary markers (empty, or one per vertex) and attributes
+  // (num_vertex_attributes() per vertex), in vertex order.
+  std::vector<int>& vertex_markers() { return vertex_markers_; }
+  const std::vector<int>& vertex_markers() const { return vertex_markers_; }
+  std::size_t num_vertex_attributes() const { return num_vertex_attributes_; }
+  void set_num_vertex_attributes(std::size_t n) { num_vertex_attributes_ = n; }
+  std::vector<double>& vertex_attributes() { return vertex_attributes_; }
+  const std::vector<double>& vertex_attributes() const { return vertex_attributes_; }
+  // Per-triangle attributes (num_triangle_attributes() per triangle slot);
+  // compact() keeps them with their triangles.
+  std::size_t num_triangle_attributes() const { return num_triangle_attributes_; }
+  void set_num_triangle_attributes(std::size_t n) { num_triangle_attributes_ = n; }
+  std::vector<double>& triangle_attributes() { return triangle_attributes_; }
+  const std::vector<double>& triangle_attributes() const { return triangle_attributes_; }
+
+  // Removes vertices in no triangle (duplicates, points in holes) and
+  // renumbers the rest in order, as Triangle's -j does. Returns old -> new id
+  // (kNone for removed vertices). Requires a compacted mesh.
+  std::vector<VertexId> remove_unused_vertices();
+
+ private:
+  void note_added(TriId t) {
+    if (!is_ghost(t)) ++live_real_;
+  }
+  void note_removed(TriId t) {
+    if (!is_ghost(t)) --live_real_;
+  }
+
+  std::vector<Point> points_;
+  std::vector<VertexId> tri_v_;
+  std::vector<HalfEdgeId> twin_;
+  std::vector<HalfEdgeId> vert_edge_;
+  std::vector<std::uint8_t> edge_flags_;  // empty until a flag is set
+  std::vector<TriId> free_;
+  std::vector<int> vertex_markers_;
+  std::vector<double> vertex_attributes_;
+  std::vector<double> triangle_attributes_;
+  std::size_t num_vertex_attributes_ = 0;
+  std::size_t num_triangle_attributes_ = 0;
+  std::size_t live_real_ = 0;
+  bool compacted_ = false;
+};
+
+}  // namespace deltamesh

@@ -1,0 +1,45 @@
+// Triangle's file formats (.node .poly .ele .edge .neigh .area), read and
+// written. Readers throw ParseError naming file, line and problem. Writers
+// write to a temporary name and rename, so no partial file is ever left.
+#pragma once
+#include <string>
+#include <vector>
+
+#include "deltamesh/mesh.hpp"
+#include "deltamesh/pslg.hpp"
+
+namespace deltamesh {
+
+// Points (with attributes and markers) of a .node file.
+Pslg read_node(const std::string& path);
+// A .poly file; when its vertex count is 0 the vertices come from the .node
+// file of the same base name.
+Pslg read_poly(const std::string& path);
+
+// Triangles of an .ele file (3 or 6 nodes per triangle, first three kept),
+// re-based to 0; attributes kept per triangle.
+struct EleData {
+  std::vector<VertexId> triangles;  // 3 per triangle
+  std::size_t num_attributes = 0;
+  std::vector<double> attributes;   // num_attributes per triangle
+};
+EleData read_ele(const std::string& path, int first_index);
+// Per-triangle area bounds of an .area file (negative: no bound).
+std::vector<double> read_area(const std::string& path);
+
+struct TriangleWriteOptions {
+  int first_index = 0;        // numbering written (Triangle: the input's; -z forces 0)
+  bool write_markers = true;  // boundary markers (-B turns them off)
+  bool write_attributes = true;
+};
+
+void write_node(const Mesh& mesh, const std::string& path, const TriangleWriteOptions& opt = {});
+void write_ele(const Mesh& mesh, const std::string& path, const TriangleWriteOptions& opt = {});
+// Every edge once, with a boundary marker (1 on the mesh boundary, 0 inside).
+void write_edge(const Mesh& mesh, const std::string& path, const TriangleWriteOptions& opt = {});
+// Per triangle its three neighbours, neighbour i opposite vertex i, -1 for none.
+void write_neigh(const Mesh& mesh, const std::string& path, const TriangleWriteOptions& opt = {});
+// Constrained edges (or the boundary when none) as a .poly with no vertices.
+void write_poly(const Mesh& mesh, const std::string& path, const TriangleWriteOptions& opt = {});
+
+}  // namespace deltamesh

@@ -1,0 +1,23 @@
+#!/usr/bin/env bash
+# Installs the Debian packages deltamesh needs, only those that are missing.
+# Usage: scripts/install-deps.sh [core|bench|test-tools]...
+set -euo pipefail
+want=(g++ make cmake libgtest-dev libgmock-dev libbenchmark-dev libgmp-dev)
+for group in "$@"; do
+  case "$group" in
+    core) ;;
+    bench) want+=(libcgal-dev) ;;
+    fuzz) want+=(clang libclang-rt-14-dev) ;;
+    *) echo "install-deps: unknown group '$group'" >&2; exit 2 ;;
+  esac
+done
+missing=()
+for pkg in "${want[@]}"; do
+  dpkg-query -W -f='${Status}' "$pkg" 2>/dev/null | grep -q "install ok installed" || missing+=("$pkg")
+done
+[ ${#missing[@]} -eq 0 ] && exit 0
+echo "install-deps: installing ${missing[*]}"
+sudo_cmd=()
+[ "$(id -u)" -ne 0 ] && sudo_cmd=(sudo)
+"${sudo_cmd[@]}" apt-get update -qq
+DEBIAN_FRONTEND=noninteractive "${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}"
