@@ -2,8 +2,10 @@
 // benchmarks. Every draw goes through Rng below, whose distributions are
 // written out here: std::uniform_real_distribution and friends are not
 // specified bit for bit, so the same seed would give different inputs on
-// another standard library. Only std::mt19937_64 (fully specified) and
-// correctly rounded or libm functions are used.
+// another standard library. std::mt19937_64 is fully specified, so uniform,
+// grid, collinear and duplicates are bit-identical everywhere; gaussian,
+// cocircular and star also call libm (log, cos, sin), whose last bit may
+// differ between C libraries.
 #pragma once
 #include <cmath>
 #include <cstddef>

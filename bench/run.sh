@@ -1,0 +1,124 @@
+#!/usr/bin/env bash
+# Runs the benchmarks of a build made with -DDELTAMESH_BENCH=ON and prints a
+# summary. See docs/benchmarks.md.
+#
+# usage: bench/run.sh BUILD_DIR [bench_delaunay options, e.g. --benchmark_filter=1e5]
+#
+# 1. bench_delaunay (library calls, deltamesh and CGAL in one binary):
+#    console output, and JSON in BUILD_DIR/bench_delaunay.json.
+# 2. Whole process on 10^6 uniform points: `deltamesh -NQ` (writes .ele)
+#    against cgal_triangulate_node (writes .ele), and `deltamesh -NEQ`
+#    (writes nothing) against cgal_triangulate_node --no-output; RUNS runs
+#    each (default 5), alternating, medians reported.
+# 3. A summary table of the medians.
+set -euo pipefail
+
+build=${1:?usage: bench/run.sh BUILD_DIR [bench_delaunay options]}
+shift
+bin=$build/bin
+json=$build/bench_delaunay.json
+runs=${RUNS:-5}
+
+if [ ! -x "$bin/bench_delaunay" ]; then
+  echo "run.sh: $bin/bench_delaunay not found; configure with -DDELTAMESH_BENCH=ON and build" >&2
+  exit 1
+fi
+
+echo "== bench_delaunay: library calls (medians of the repetitions)"
+"$bin/bench_delaunay" --benchmark_format=console --benchmark_out="$json" \
+  --benchmark_out_format=json "$@"
+echo "JSON written to $json"
+
+# ---- whole process -------------------------------------------------------------
+median() { sort -g | awk '{ v[NR] = $1 } END { if (NR == 0) print "nan"; else if (NR % 2) print v[(NR + 1) / 2]; else print (v[NR / 2] + v[NR / 2 + 1]) / 2 }'; }
+
+# Wall seconds of one run of "$@" (output discarded, failure fatal).
+wall() {
+  local t0=$EPOCHREALTIME
+  if ! "$@" >/dev/null 2>"$tmp/stderr"; then
+    echo "run.sh: failed: $*" >&2
+    cat "$tmp/stderr" >&2
+    exit 1
+  fi
+  local t1=$EPOCHREALTIME
+  awk -v a="$t0" -v b="$t1" 'BEGIN { printf "%.4f\n", b - a }'
+}
+
+whole=()  # "label dm_median cgal_median" lines for the summary
+if [ ! -x "$bin/deltamesh" ] || [ ! -x "$bin/deltamesh-gen" ]; then
+  echo "run.sh: deltamesh or deltamesh-gen not built; whole-process comparison skipped" >&2
+else
+  tmp=$(mktemp -d)
+  trap 'rm -rf "$tmp"' EXIT
+  "$bin/deltamesh-gen" uniform 1000000 --seed 42 -o "$tmp/u1m.node"
+  have_cgal=0
+  if [ -x "$bin/cgal_triangulate_node" ]; then
+    have_cgal=1
+  else
+    echo "run.sh: cgal_triangulate_node not built (CGAL not found); deltamesh timed alone"
+  fi
+  echo
+  echo "== whole process, 10^6 uniform points, $runs runs each (wall seconds)"
+  for mode in ele none; do
+    : >"$tmp/dm" && : >"$tmp/cg"
+    for ((i = 0; i < runs; ++i)); do
+      if [ $mode = ele ]; then
+        wall "$bin/deltamesh" -NQ "$tmp/u1m.node" >>"$tmp/dm"
+        if [ $have_cgal = 1 ]; then wall "$bin/cgal_triangulate_node" -o "$tmp/cgal.ele" "$tmp/u1m.node" >>"$tmp/cg"; fi
+      else
+        wall "$bin/deltamesh" -NEQ "$tmp/u1m.node" >>"$tmp/dm"
+        if [ $have_cgal = 1 ]; then wall "$bin/cgal_triangulate_node" --no-output "$tmp/u1m.node" >>"$tmp/cg"; fi
+      fi
+    done
+    dm=$(median <"$tmp/dm")
+    if [ $have_cgal = 1 ]; then cg=$(median <"$tmp/cg"); else cg=nan; fi
+    if [ $mode = ele ]; then
+      label="read+triangulate+write .ele"
+      cmds="deltamesh -NQ | cgal_triangulate_node"
+    else
+      label="read+triangulate"
+      cmds="deltamesh -NEQ | cgal_triangulate_node --no-output"
+    fi
+    if [ "$cg" = nan ]; then cgs="      -"; else cgs=$(printf '%7.3f' "$cg"); fi
+    printf '%-28s deltamesh %7.3f s   CGAL %s s   (%s)\n' "$label" "$dm" "$cgs" "$cmds"
+    whole+=("process_$mode|$dm|$cg|$label")
+  done
+fi
+
+# ---- summary ----------------------------------------------------------------------
+echo
+echo "== summary (medians; ratio = CGAL time / deltamesh time, > 1: deltamesh faster)"
+{
+  # Google Benchmark writes one "key": value per line.
+  awk '
+    /"run_name":/       { split($0, q, "\""); run = q[4] }
+    /"aggregate_name":/ { split($0, q, "\""); agg = q[4] }
+    /"error_occurred":/ { err = 1 }
+    /"real_time":/      { gsub(/[ ,]/, "", $2); t = $2 }
+    /"us_per_pt":/      { gsub(/[ ,]/, "", $2); us = $2 }
+    /"B_per_tri":/      { gsub(/[ ,]/, "", $2); bt = $2 }
+    /^ *}/ {
+      if (agg == "median" && !err) {
+        split(run, p, "/"); c = p[3]
+        if (!(c in seen)) { seen[c] = 1; order[++n] = c }
+        T[c, p[2]] = t; US[c, p[2]] = us; BT[c, p[2]] = bt
+      }
+      run = agg = t = us = bt = ""; err = 0
+    }
+    function f(x, fmt) { return x == "" ? "-" : sprintf(fmt, x) }
+    END {
+      printf "%-16s %12s %12s %7s %10s %10s %9s %9s\n", "case", "deltamesh", "CGAL", "ratio", "us/pt dm", "us/pt CGAL", "B/tri dm", "B/tri CGAL"
+      for (i = 1; i <= n; ++i) {
+        c = order[i]; d = T[c, "deltamesh"]; g = T[c, "cgal"]
+        r = (d != "" && g != "" && d > 0) ? sprintf("%.2f", g / d) : "-"
+        printf "%-16s %12s %12s %7s %10s %10s %9s %9s\n", c, f(d, "%.1f ms"), f(g, "%.1f ms"), r,
+          f(US[c, "deltamesh"], "%.3f"), f(US[c, "cgal"], "%.3f"), f(BT[c, "deltamesh"], "%.1f"), f(BT[c, "cgal"], "%.1f")
+      }
+    }' "$json"
+  for w in "${whole[@]}"; do
+    IFS='|' read -r name dm cg label <<<"$w"
+    awk -v c="$name" -v l="$label" -v d="$dm" -v g="$cg" 'BEGIN {
+      r = (g != "nan" && d > 0) ? sprintf("%.2f", g / d) : "-"
+      printf "%-16s %12s %12s %7s   (whole process, 10^6 uniform: %s)\n", c, sprintf("%.3f s", d), (g == "nan" ? "-" : sprintf("%.3f s", g)), r, l }'
+  done
+}
