@@ -1,0 +1,104 @@
+// Delaunay vertex insertion (split + Lawson flips) on a mesh with ghost
+// triangles. Shared by point-set Delaunay and later by CDT and refinement.
+#pragma once
+#include <vector>
+
+#include "deltamesh/mesh.hpp"
+#include "deltamesh/predicates.hpp"
+
+namespace deltamesh::detail {
+
+class DelaunayInserter {
+ public:
+  struct Result {
+    VertexId vertex;  // the inserted vertex, or the existing one p coincides with
+    TriId tri;        // a triangle incident to `vertex` (a good next hint)
+  };
+
+  explicit DelaunayInserter(Mesh& mesh) : mesh_(mesh) { stack_.reserve(64); }
+
+  // Inserts vertex v, already in mesh.points() but in no triangle.
+  Result insert_existing(VertexId v, TriId hint) {
+    const Location loc = mesh_.locate(mesh_.point(v), hint);
+    switch (loc.kind) {
+      case Location::Kind::OnVertex:
+        return {loc.vertex, loc.tri};
+      case Location::Kind::OnEdge:
+        insert_on_edge(loc.edge, v);
+        break;
+      case Location::Kind::InTriangle:
+      case Location::Kind::Outside:
+        if (loc.tri == kNone) return {kNone, kNone};
+        insert_in_triangle(loc.tri, v);
+        break;
+    }
+    legalize(v);
+    return {v, tri_of(mesh_.out_edge(v))};
+  }
+
+  // Adds p as a new vertex (unless it coincides with one) and inserts it.
+  Result insert_point(const Point& p, TriId hint) {
+    const Location loc = mesh_.locate(p, hint);
+    if (loc.kind == Location::Kind::OnVertex) return {loc.vertex, loc.tri};
+    if (loc.tri == kNone) return {kNone, kNone};
+    const VertexId v = mesh_.add_vertex(p);
+    if (loc.kind == Location::Kind::OnEdge)
+      insert_on_edge(loc.edge, v);
+    else
+      insert_in_triangle(loc.tri, v);
+    legalize(v);
+    return {v, tri_of(mesh_.out_edge(v))};
+  }
+
+ private:
+  void insert_in_triangle(TriId t, VertexId v) {
+    const HalfEdgeId r = mesh_.split_triangle(t, v);  // v -> first vertex, in slot t
+    stack_.push_back(r - 2);
+    stack_.push_back(mesh_.twin(r - 1) - 2);
+    stack_.push_back(mesh_.twin(r) - 1);
+  }
+
+  void insert_on_edge(HalfEdgeId e, VertexId v) {
+    const HalfEdgeId f = mesh_.twin(e);
+    const HalfEdgeId g0 = mesh_.split_edge(e, v);
+    stack_.push_back(prev_edge(e));
+    stack_.push_back(g0 + 1);
+    if (f != kNone) {
+      stack_.push_back(prev_edge(f));
+      stack_.push_back(next_edge(mesh_.twin(e)));
+    }
+  }
+
+  // Does the neighbour across e (opposite v in its own triangle) need a flip?
+  bool should_flip(HalfEdgeId e, VertexId v) const {
+    const HalfEdgeId f = mesh_.twin(e);
+    if (f == kNone || mesh_.is_constrained(e)) return false;
+    const VertexId a = mesh_.origin(e), b = mesh_.dest(e);
+    const VertexId d = mesh_.origin(prev_edge(f));
+    if (d == kInfinite) return false;
+    const Point& p = mesh_.point(v);
+    // Across a ghost edge the "circle" of the neighbouring ghost is the open
+    // half-plane beyond its hull edge.
+    if (b == kInfinite) return orient2d(mesh_.point(a), mesh_.point(d), p) > 0;
+    if (a == kInfinite) return orient2d(mesh_.point(d), mesh_.point(b), p) > 0;
+    return incircle(mesh_.point(a), mesh_.point(b), p, mesh_.point(d)) > 0;
+  }
+
+  void legalize(VertexId v) {
+    while (!stack_.empty()) {
+      const HalfEdgeId e = stack_.back();
+      stack_.pop_back();
+      if (!should_flip(e, v)) continue;
+      const HalfEdgeId f = mesh_.twin(e);
+      mesh_.flip(e);
+      // Slots keep their ids: e's triangle is now (v, a, d), f's is (d, b, v).
+      stack_.push_back(next_edge(e));
+      stack_.push_back(f);
+    }
+  }
+
+  Mesh& mesh_;
+  std::vector<HalfEdgeId> stack_;
+};
+
+}  // namespace deltamesh::detail

@@ -1,0 +1,268 @@
+#include "deltamesh/validate.hpp"
+
+#include <sstream>
+
+#include "deltamesh/predicates.hpp"
+
+namespace deltamesh {
+
+std::string CheckReport::summary() const {
+  std::ostringstream out;
+  if (ok()) {
+    out << "mesh is valid: " << triangles << " triangles, " << edges << " edges, " << vertices_used
+        << " vertices";
+  } else {
+    out << problems.size() << " problem(s):";
+    for (const std::string& p : problems) out << "\n  " << p;
+  }
+  return out.str();
+}
+
+namespace {
+
+class Checker {
+ public:
+  Checker(const Mesh& m, const CheckOptions& o, CheckReport& r) : mesh_(m), opt_(o), rep_(r) {}
+
+  void run() {
+    if (!check_indices()) return;
+    check_twins();
+    if (!rep_.ok()) return;  // later checks assume a consistent topology
+    check_orientation();
+    check_vertex_edges();
+    if (opt_.delaunay) check_delaunay();
+    check_boundary_and_euler();
+  }
+
+ private:
+  template <class... A>
+  void problem(const A&... parts) {
+    if (rep_.problems.size() >= opt_.max_problems) return;
+    std::ostringstream out;
+    (out << ... << parts);
+    rep_.problems.push_back(out.str());
+  }
+
+  // A real half-edge whose twin is missing or a ghost lies on the boundary.
+  bool on_boundary(HalfEdgeId e) const {
+    const HalfEdgeId t = mesh_.twin(e);
+    return t == kNone || mesh_.is_ghost(tri_of(t));
+  }
+
+  bool check_indices() {
+    const std::size_t nv = mesh_.num_vertices();
+    for (TriId t = 0; t < mesh_.num_triangle_slots(); ++t) {
+      if (mesh_.is_dead(t)) continue;
+      for (VertexId v : mesh_.triangle(t))
+        if (v != kInfinite && v >= nv) problem("triangle ", t, " refers to vertex ", v, " of ", nv);
+    }
+    return rep_.ok();
+  }
+
+  void check_twins() {
+    const std::size_t slots = mesh_.num_triangle_slots();
+    bool closed = false;  // ghost triangles close the mesh: every edge has a twin
+    for (TriId t = 0; t < slots && !closed; ++t) closed = !mesh_.is_dead(t) && mesh_.is_ghost(t);
+    for (TriId t = 0; t < slots; ++t) {
+      if (mesh_.is_dead(t)) continue;
+      for (int i = 0; i < 3; ++i) {
+        const HalfEdgeId e = 3 * t + i;
+        const HalfEdgeId f = mesh_.twin(e);
+        if (f == kNone) {
+          if (closed)
+            problem("half-edge ", e, " of triangle ", t, " has no twin in a closed triangulation");
+          continue;
+        }
+        if (f >= 3 * slots || mesh_.is_dead(tri_of(f))) {
+          problem("half-edge ", e, " has twin ", f, " that is not a live half-edge");
+        } else if (mesh_.twin(f) != e) {
+          problem("twin of twin of half-edge ", e, " is ", mesh_.twin(f), ", not itself");
+        } else if (mesh_.origin(f) != mesh_.dest(e) || mesh_.dest(f) != mesh_.origin(e)) {
+          problem("half-edge ", e, " (", mesh_.origin(e), "->", mesh_.dest(e), ") and its twin (",
+                  mesh_.origin(f), "->", mesh_.dest(f), ") disagree");
+        }
+        if (mesh_.is_constrained(e) != mesh_.is_constrained(f) && f < 3 * slots)
+          problem("edge ", mesh_.origin(e), "-", mesh_.dest(e), " is constrained on one side only");
+      }
+    }
+  }
+
+  void check_orientation() {
+    for (TriId t = 0; t < mesh_.num_triangle_slots(); ++t) {
+      if (!mesh_.is_real(t)) continue;
+      ++rep_.triangles;
+      const auto v = mesh_.triangle(t);
+      if (v[0] == v[1] || v[1] == v[2] || v[0] == v[2]) {
+        problem("triangle ", t, " repeats a vertex");
+        continue;
+      }
+      if (!(orient2d(mesh_.point(v[0]), mesh_.point(v[1]), mesh_.point(v[2])) > 0))
+        problem("triangle ", t, " (", v[0], ", ", v[1], ", ", v[2], ") is not counter-clockwise");
+    }
+  }
+
+  void check_vertex_edges() {
+    const std::size_t nv = mesh_.num_vertices();
+    std::vector<std::uint32_t> incident(nv, 0);
+    for (TriId t = 0; t < mesh_.num_triangle_slots(); ++t) {
+      if (!mesh_.is_real(t)) continue;
+      for (VertexId v : mesh_.triangle(t)) ++incident[v];
+    }
+    for (VertexId v = 0; v < nv; ++v) {
+      const HalfEdgeId e = mesh_.out_edge(v);
+      if (incident[v] == 0) {
+        if (e != kNone && e < mesh_.triangle_vertices().size() && !mesh_.is_dead(tri_of(e)) &&
+            mesh_.is_real(tri_of(e)))
+          problem("vertex ", v, " is in no triangle but has out-edge ", e);
+        continue;
+      }
+      ++rep_.vertices_used;
+      if (e == kNone || e >= mesh_.triangle_vertices().size() || mesh_.is_dead(tri_of(e))) {
+        problem("vertex ", v, " is in ", incident[v], " triangles but has no valid out-edge");
+        continue;
+      }
+      if (mesh_.origin(e) != v) {
+        problem("out-edge ", e, " of vertex ", v, " starts at ", mesh_.origin(e));
+        continue;
+      }
+      // Rotary traversal must meet every real triangle around v once.
+      std::uint32_t seen = 0, wraps = 0;
+      bool closed_fan = true;
+      const Point& pv = mesh_.point(v);
+      HalfEdgeId g = e;
+      do {
+        if (mesh_.is_real(tri_of(g))) {
+          ++seen;
+          // The fan's triangles cover the direction +x exactly once around an
+          // interior vertex; y comparisons decide it exactly.
+          const Point& a = mesh_.point(mesh_.dest(g));
+          const Point& b = mesh_.point(mesh_.origin(prev_edge(g)));
+          if (a.y <= pv.y && b.y > pv.y) ++wraps;
+        } else {
+          closed_fan = false;
+        }
+        g = mesh_.rotate_ccw(g);
+      } while (g != kNone && g != e && seen <= incident[v]);
+      if (g == kNone) closed_fan = false;
+      if (seen != incident[v])
+        problem("rotation around vertex ", v, " meets ", seen, " of its ", incident[v], " triangles");
+      else if (closed_fan && wraps != 1)
+        problem("the triangles around vertex ", v, " wind ", wraps, " times around it (overlap)");
+    }
+  }
+
+  void check_delaunay() {
+    for (TriId t = 0; t < mesh_.num_triangle_slots(); ++t) {
+      if (!mesh_.is_real(t)) continue;
+      for (int i = 0; i < 3; ++i) {
+        const HalfEdgeId e = 3 * t + i;
+        const HalfEdgeId f = mesh_.twin(e);
+        if (f == kNone || f < e || mesh_.is_constrained(e) || !mesh_.is_real(tri_of(f))) continue;
+        const Point& a = mesh_.point(mesh_.origin(e));
+        const Point& b = mesh_.point(mesh_.dest(e));
+        const Point& c = mesh_.point(mesh_.origin(prev_edge(e)));
+        const Point& d = mesh_.point(mesh_.origin(prev_edge(f)));
+        if (incircle(a, b, c, d) > 0)
+          problem("edge ", mesh_.origin(e), "-", mesh_.dest(e), " is not locally Delaunay (vertex ",
+                  mesh_.origin(prev_edge(f)), " lies inside the circumcircle of triangle ", t, ")");
+      }
+    }
+  }
+
+  // The boundary half-edge that follows boundary half-edge e (they share dest(e)).
+  HalfEdgeId next_boundary(HalfEdgeId e) const {
+    HalfEdgeId g = next_edge(e);  // out of dest(e), inside the mesh
+    for (std::size_t guard = 0; guard < 3 * mesh_.num_triangle_slots(); ++guard) {
+      if (on_boundary(g)) return g;
+      g = next_edge(mesh_.twin(g));  // clockwise around dest(e)
+    }
+    return kNone;
+  }
+
+  void check_boundary_and_euler() {
+    std::size_t edges = 0, boundary = 0;
+    for (TriId t = 0; t < mesh_.num_triangle_slots(); ++t) {
+      if (!mesh_.is_real(t)) continue;
+      for (int i = 0; i < 3; ++i) {
+        const HalfEdgeId e = 3 * t + i;
+        if (on_boundary(e)) {
+          ++edges;
+          ++boundary;
+        } else if (mesh_.twin(e) > e) {
+          ++edges;
+        }
+      }
+    }
+    rep_.edges = edges;
+    // Walk boundary loops; check convexity where asked.
+    std::vector<char> done(3 * mesh_.num_triangle_slots(), 0);
+    std::size_t loops = 0;
+    for (TriId t = 0; t < mesh_.num_triangle_slots(); ++t) {
+      if (!mesh_.is_real(t)) continue;
+      for (int i = 0; i < 3; ++i) {
+        const HalfEdgeId start = 3 * t + i;
+        if (done[start] || !on_boundary(start)) continue;
+        ++loops;
+        HalfEdgeId e = start;
+        std::size_t steps = 0;
+        do {
+          done[e] = 1;
+          const HalfEdgeId n = next_boundary(e);
+          if (n == kNone) {
+            problem("boundary walk from half-edge ", e, " is broken");
+            return;
+          }
+          if (opt_.convex_hull &&
+              orient2d(mesh_.point(mesh_.origin(e)), mesh_.point(mesh_.dest(e)), mesh_.point(mesh_.dest(n))) < 0)
+            problem("boundary turns right at vertex ", mesh_.dest(e), ": the hull is not convex");
+          e = n;
+        } while (e != start && ++steps <= boundary);
+        if (e != start) problem("boundary loop from half-edge ", start, " does not close");
+      }
+    }
+    if (opt_.convex_hull && loops > 1) problem("the mesh has ", loops, " boundary loops, not one convex hull");
+    // Components by flood fill over twins; Euler: V - E + F = 2C - loops.
+    std::vector<char> seen(mesh_.num_triangle_slots(), 0);
+    std::size_t components = 0;
+    std::vector<TriId> stack;
+    for (TriId t = 0; t < mesh_.num_triangle_slots(); ++t) {
+      if (!mesh_.is_real(t) || seen[t]) continue;
+      ++components;
+      stack.push_back(t);
+      seen[t] = 1;
+      while (!stack.empty()) {
+        const TriId u = stack.back();
+        stack.pop_back();
+        for (int i = 0; i < 3; ++i) {
+          const HalfEdgeId f = mesh_.twin(3 * u + i);
+          if (f == kNone) continue;
+          const TriId w = tri_of(f);
+          if (!seen[w] && mesh_.is_real(w)) {
+            seen[w] = 1;
+            stack.push_back(w);
+          }
+        }
+      }
+    }
+    const long long chi = static_cast<long long>(rep_.vertices_used) - static_cast<long long>(edges) +
+                          static_cast<long long>(rep_.triangles);
+    const long long expected = 2 * static_cast<long long>(components) - static_cast<long long>(loops);
+    if (chi != expected)
+      problem("Euler count V - E + F = ", chi, " but ", components, " component(s) with ", loops,
+              " boundary loop(s) need ", expected, " (a vertex is shared by separate fans, or the mesh overlaps)");
+  }
+
+  const Mesh& mesh_;
+  const CheckOptions& opt_;
+  CheckReport& rep_;
+};
+
+}  // namespace
+
+CheckReport check(const Mesh& mesh, const CheckOptions& options) {
+  CheckReport report;
+  Checker(mesh, options, report).run();
+  return report;
+}
+
+}  // namespace deltamesh

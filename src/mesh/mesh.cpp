@@ -1,0 +1,395 @@
+#include "deltamesh/mesh.hpp"
+
+#include <algorithm>
+#include <cassert>
+
+#include "deltamesh/predicates.hpp"
+
+namespace deltamesh {
+
+HalfEdgeId Mesh::find_edge(VertexId a, VertexId b) const {
+  HalfEdgeId found = kNone;
+  for_each_out_edge(a, [&](HalfEdgeId e) {
+    if (dest(e) == b) {
+      found = e;
+      return false;
+    }
+    return true;
+  });
+  return found;
+}
+
+void Mesh::reserve(std::size_t vertices, std::size_t triangles) {
+  points_.reserve(vertices);
+  vert_edge_.reserve(vertices);
+  tri_v_.reserve(3 * triangles);
+  twin_.reserve(3 * triangles);
+}
+
+TriId Mesh::add_triangle(VertexId a, VertexId b, VertexId c) {
+  TriId t;
+  if (!free_.empty()) {
+    t = free_.back();
+    free_.pop_back();
+  } else {
+    t = static_cast<TriId>(tri_v_.size() / 3);
+    tri_v_.resize(tri_v_.size() + 3);
+    twin_.resize(twin_.size() + 3);
+    if (!edge_flags_.empty()) edge_flags_.resize(tri_v_.size(), 0);
+    if (num_triangle_attributes_ > 0)
+      triangle_attributes_.resize((t + 1) * num_triangle_attributes_, 0.0);
+  }
+  const HalfEdgeId e = 3 * t;
+  tri_v_[e] = a;
+  tri_v_[e + 1] = b;
+  tri_v_[e + 2] = c;
+  twin_[e] = twin_[e + 1] = twin_[e + 2] = kNone;
+  if (!edge_flags_.empty()) edge_flags_[e] = edge_flags_[e + 1] = edge_flags_[e + 2] = 0;
+  note_added(t);
+  compacted_ = false;
+  return t;
+}
+
+void Mesh::remove_triangle(TriId t) {
+  note_removed(t);
+  for (int i = 0; i < 3; ++i) {
+    const HalfEdgeId e = 3 * t + i;
+    if (twin_[e] != kNone && twin_[twin_[e]] == e) twin_[twin_[e]] = kNone;
+    twin_[e] = kNone;
+    tri_v_[e] = kNone;
+  }
+  free_.push_back(t);
+}
+
+void Mesh::set_edge_flags(HalfEdgeId e, std::uint8_t flags) {
+  if (edge_flags_.empty()) {
+    if (flags == 0) return;
+    edge_flags_.assign(tri_v_.size(), 0);
+  }
+  edge_flags_[e] = flags;
+}
+
+HalfEdgeId Mesh::flip(HalfEdgeId e) {
+  const HalfEdgeId f = twin_[e];
+  assert(f != kNone);
+  const TriId t1 = tri_of(e), t2 = tri_of(f);
+  note_removed(t1);
+  note_removed(t2);
+  const HalfEdgeId e0 = e, e1 = next_edge(e), e2 = prev_edge(e);
+  const HalfEdgeId f0 = f, f1 = next_edge(f), f2 = prev_edge(f);
+  const VertexId a = tri_v_[e0], b = tri_v_[e1], c = tri_v_[e2], d = tri_v_[f2];
+  const HalfEdgeId tw_bc = twin_[e1], tw_ca = twin_[e2], tw_ad = twin_[f1], tw_db = twin_[f2];
+  // t1 becomes (c, a, d), t2 becomes (d, b, c).
+  tri_v_[e0] = c;
+  tri_v_[e1] = a;
+  tri_v_[e2] = d;
+  tri_v_[f0] = d;
+  tri_v_[f1] = b;
+  tri_v_[f2] = c;
+  auto relink = [&](HalfEdgeId x, HalfEdgeId y) {
+    twin_[x] = y;
+    if (y != kNone) twin_[y] = x;
+  };
+  relink(e0, tw_ca);
+  relink(e1, tw_ad);
+  relink(f0, tw_db);
+  relink(f1, tw_bc);
+  twin_[e2] = f2;
+  twin_[f2] = e2;
+  if (!edge_flags_.empty()) {
+    const std::uint8_t fl_bc = edge_flags_[e1], fl_ca = edge_flags_[e2], fl_ad = edge_flags_[f1],
+                       fl_db = edge_flags_[f2];
+    edge_flags_[e0] = fl_ca;
+    edge_flags_[e1] = fl_ad;
+    edge_flags_[e2] = 0;
+    edge_flags_[f0] = fl_db;
+    edge_flags_[f1] = fl_bc;
+    edge_flags_[f2] = 0;
+  }
+  // Keep each vertex's out-edge pointing at an edge that plays the same role.
+  if (a != kInfinite && (vert_edge_[a] == e0 || vert_edge_[a] == f1)) vert_edge_[a] = e1;
+  if (b != kInfinite && (vert_edge_[b] == e1 || vert_edge_[b] == f0)) vert_edge_[b] = f1;
+  if (c != kInfinite && vert_edge_[c] == e2) vert_edge_[c] = e0;
+  if (d != kInfinite && vert_edge_[d] == f2) vert_edge_[d] = f0;
+  note_added(t1);
+  note_added(t2);
+  return f2;
+}
+
+HalfEdgeId Mesh::split_triangle(TriId t, VertexId p) {
+  const HalfEdgeId e0 = 3 * t, e1 = e0 + 1, e2 = e0 + 2;
+  const VertexId a = tri_v_[e0], b = tri_v_[e1], c = tri_v_[e2];
+  const HalfEdgeId tw_bc = twin_[e1], tw_ca = twin_[e2];
+  const std::uint8_t fl_bc = edge_flags(e1), fl_ca = edge_flags(e2);
+  note_removed(t);
+  const TriId t1 = add_triangle(b, c, p);
+  const TriId t2 = add_triangle(c, a, p);
+  tri_v_[e2] = p;  // t becomes (a, b, p)
+  note_added(t);
+  const HalfEdgeId g0 = 3 * t1, h0 = 3 * t2;
+  auto relink = [&](HalfEdgeId x, HalfEdgeId y) {
+    twin_[x] = y;
+    if (y != kNone) twin_[y] = x;
+  };
+  relink(g0, tw_bc);
+  relink(h0, tw_ca);
+  link(e1, g0 + 2);
+  link(g0 + 1, h0 + 2);
+  link(h0 + 1, e2);
+  if (!edge_flags_.empty()) {
+    edge_flags_[g0] = fl_bc;
+    edge_flags_[h0] = fl_ca;
+    edge_flags_[e1] = edge_flags_[e2] = 0;
+  }
+  if (num_triangle_attributes_ > 0) {
+    for (std::size_t k = 0; k < num_triangle_attributes_; ++k) {
+      const double v = triangle_attributes_[t * num_triangle_attributes_ + k];
+      triangle_attributes_[t1 * num_triangle_attributes_ + k] = v;
+      triangle_attributes_[t2 * num_triangle_attributes_ + k] = v;
+    }
+  }
+  if (b != kInfinite && vert_edge_[b] == e1) vert_edge_[b] = g0;
+  if (c != kInfinite && vert_edge_[c] == e2) vert_edge_[c] = h0;
+  if (p != kInfinite) vert_edge_[p] = e2;
+  return e2;
+}
+
+HalfEdgeId Mesh::split_edge(HalfEdgeId e, VertexId p) {
+  const HalfEdgeId f = twin_[e];
+  const HalfEdgeId e0 = e, e1 = next_edge(e), e2 = prev_edge(e);
+  const VertexId a = tri_v_[e0], b = tri_v_[e1], c = tri_v_[e2];
+  const HalfEdgeId tw_bc = twin_[e1];
+  const std::uint8_t fl_e = edge_flags(e0), fl_bc = edge_flags(e1);
+  const TriId t1 = tri_of(e);
+  note_removed(t1);
+  // (a, b, c) becomes (a, p, c) + new (p, b, c).
+  tri_v_[e1] = p;
+  note_added(t1);
+  const TriId t3 = add_triangle(p, b, c);
+  const HalfEdgeId g0 = 3 * t3;
+  twin_[g0 + 1] = tw_bc;
+  if (tw_bc != kNone) twin_[tw_bc] = g0 + 1;
+  link(e1, g0 + 2);
+  auto copy_attributes = [&](TriId from, TriId to) {
+    for (std::size_t k = 0; k < num_triangle_attributes_; ++k)
+      triangle_attributes_[to * num_triangle_attributes_ + k] =
+          triangle_attributes_[from * num_triangle_attributes_ + k];
+  };
+  copy_attributes(t1, t3);
+  if (!edge_flags_.empty()) {
+    edge_flags_[g0] = fl_e;
+    edge_flags_[g0 + 1] = fl_bc;
+    edge_flags_[e1] = edge_flags_[g0 + 2] = 0;
+  }
+  if (b != kInfinite && vert_edge_[b] == e1) vert_edge_[b] = g0 + 1;
+  if (p != kInfinite) vert_edge_[p] = g0;
+  if (f == kNone) {
+    twin_[e0] = kNone;
+    twin_[g0] = kNone;
+    return g0;
+  }
+  // Other side (b, a, d) becomes (b, p, d) + new (p, a, d).
+  const HalfEdgeId f0 = f, f1 = next_edge(f);
+  const HalfEdgeId tw_ad = twin_[f1];
+  const std::uint8_t fl_f = edge_flags(f0), fl_ad = edge_flags(f1);
+  const VertexId d = tri_v_[prev_edge(f)];
+  const TriId t2 = tri_of(f);
+  note_removed(t2);
+  tri_v_[f1] = p;
+  note_added(t2);
+  const TriId t4 = add_triangle(p, a, d);
+  const HalfEdgeId h0 = 3 * t4;
+  twin_[h0 + 1] = tw_ad;
+  if (tw_ad != kNone) twin_[tw_ad] = h0 + 1;
+  link(f1, h0 + 2);
+  copy_attributes(t2, t4);
+  link(e0, h0);
+  link(g0, f0);
+  if (!edge_flags_.empty()) {
+    edge_flags_[h0] = fl_f;
+    edge_flags_[h0 + 1] = fl_ad;
+    edge_flags_[f1] = edge_flags_[h0 + 2] = 0;
+  }
+  if (a != kInfinite && vert_edge_[a] == f1) vert_edge_[a] = h0 + 1;
+  (void)d;
+  return g0;
+}
+
+namespace {
+// Small deterministic generator for the walk's random edge order.
+inline std::uint32_t walk_random(std::uint64_t& s) {
+  s ^= s << 13;
+  s ^= s >> 7;
+  s ^= s << 17;
+  return static_cast<std::uint32_t>(s >> 32);
+}
+}  // namespace
+
+Location Mesh::locate(const Point& p, TriId start) const {
+  Location loc;
+  const std::size_t slots = num_triangle_slots();
+  if (start == kNone || start >= slots || is_dead(start)) {
+    start = kNone;
+    for (TriId t = 0; t < slots; ++t)
+      if (!is_dead(t)) {
+        start = t;
+        break;
+      }
+    if (start == kNone) return loc;
+  }
+  TriId t = start;
+  if (is_ghost(t)) {
+    // Step to the real triangle across the ghost's real edge.
+    for (int i = 0; i < 3; ++i) {
+      const HalfEdgeId e = 3 * t + i;
+      if (tri_v_[e] != kInfinite && tri_v_[next_edge(e)] != kInfinite) {
+        t = tri_of(twin_[e]);
+        break;
+      }
+    }
+  }
+  std::uint64_t rng = 0x9E3779B97F4A7C15ull ^ static_cast<std::uint64_t>(t);
+  // A visibility walk visits at most every triangle once per pass when it
+  // cannot cycle; the bound only guards against a corrupt mesh.
+  for (std::size_t steps = 0; steps <= 4 * slots + 16; ++steps) {
+    const HalfEdgeId base = 3 * t;
+    const std::uint32_t r = walk_random(rng) % 3;
+    HalfEdgeId exit = kNone;
+    int zeros = 0;
+    HalfEdgeId zero_edge = kNone;
+    for (std::uint32_t k = 0; k < 3; ++k) {
+      const HalfEdgeId e = base + (r + k) % 3;
+      const Point& a = points_[tri_v_[e]];
+      const Point& b = points_[tri_v_[next_edge(e)]];
+      const double o = orient2d(a, b, p);
+      if (o < 0) {
+        exit = e;
+        break;
+      }
+      if (o == 0) {
+        ++zeros;
+        zero_edge = e;
+      }
+    }
+    if (exit == kNone) {
+      if (zeros == 0) {
+        loc.kind = Location::Kind::InTriangle;
+        loc.tri = t;
+        return loc;
+      }
+      if (zeros == 1) {
+        loc.kind = Location::Kind::OnEdge;
+        loc.tri = t;
+        loc.edge = zero_edge;
+        return loc;
+      }
+      // Two zero orientations: p is the vertex the two edges share.
+      for (int i = 0; i < 3; ++i) {
+        if (points_[tri_v_[base + i]] == p) {
+          loc.kind = Location::Kind::OnVertex;
+          loc.tri = t;
+          loc.vertex = tri_v_[base + i];
+          loc.edge = base + i;
+          return loc;
+        }
+      }
+      loc.kind = Location::Kind::OnEdge;  // unreachable for a valid mesh
+      loc.tri = t;
+      loc.edge = zero_edge;
+      return loc;
+    }
+    const HalfEdgeId across = twin_[exit];
+    if (across == kNone) {  // compacted mesh: p is outside the domain here
+      loc.kind = Location::Kind::Outside;
+      loc.tri = t;
+      loc.edge = exit;
+      return loc;
+    }
+    const TriId u = tri_of(across);
+    if (is_ghost(u)) {
+      loc.kind = Location::Kind::Outside;
+      loc.tri = u;
+      loc.edge = across;
+      return loc;
+    }
+    t = u;
+  }
+  loc.kind = Location::Kind::Outside;
+  loc.tri = kNone;
+  return loc;
+}
+
+void Mesh::compact() {
+  const std::size_t slots = num_triangle_slots();
+  std::vector<TriId> new_id(slots, kNone);
+  TriId next = 0;
+  for (TriId t = 0; t < slots; ++t)
+    if (!is_dead(t) && !is_ghost(t)) new_id[t] = next++;
+  const std::size_t na = num_triangle_attributes_;
+  for (TriId t = 0; t < slots; ++t) {
+    const TriId n = new_id[t];
+    if (n == kNone) continue;
+    for (int i = 0; i < 3; ++i) {
+      const HalfEdgeId o = 3 * t + i, m = 3 * n + i;
+      tri_v_[m] = tri_v_[o];
+      const HalfEdgeId tw = twin_[o];
+      twin_[m] = (tw == kNone || new_id[tri_of(tw)] == kNone) ? kNone : 3 * new_id[tri_of(tw)] + tw % 3;
+      if (!edge_flags_.empty()) edge_flags_[m] = edge_flags_[o];
+    }
+    for (std::size_t k = 0; k < na; ++k) triangle_attributes_[n * na + k] = triangle_attributes_[t * na + k];
+  }
+  tri_v_.resize(3 * std::size_t{next});
+  twin_.resize(3 * std::size_t{next});
+  if (!edge_flags_.empty()) edge_flags_.resize(3 * std::size_t{next});
+  triangle_attributes_.resize(std::size_t{next} * na);
+  // No shrink_to_fit: reallocating would double the peak memory here.
+  free_.clear();
+  free_.shrink_to_fit();
+  std::fill(vert_edge_.begin(), vert_edge_.end(), kNone);
+  for (HalfEdgeId e = 0; e < tri_v_.size(); ++e) vert_edge_[tri_v_[e]] = e;
+  for (HalfEdgeId e = 0; e < tri_v_.size(); ++e)
+    if (twin_[e] == kNone) vert_edge_[tri_v_[e]] = e;
+  live_real_ = next;
+  compacted_ = true;
+}
+
+void Mesh::recount() {
+  live_real_ = 0;
+  for (TriId t = 0; t < num_triangle_slots(); ++t)
+    if (is_real(t)) ++live_real_;
+}
+
+std::size_t Mesh::memory_bytes() const {
+  return points_.capacity() * sizeof(Point) + tri_v_.capacity() * sizeof(VertexId) +
+         twin_.capacity() * sizeof(HalfEdgeId) + vert_edge_.capacity() * sizeof(HalfEdgeId) +
+         edge_flags_.capacity() + free_.capacity() * sizeof(TriId) +
+         vertex_markers_.capacity() * sizeof(int) +
+         (vertex_attributes_.capacity() + triangle_attributes_.capacity()) * sizeof(double);
+}
+
+std::vector<VertexId> Mesh::remove_unused_vertices() {
+  const std::size_t n = points_.size();
+  std::vector<VertexId> map(n, kNone);
+  for (VertexId v : tri_v_)
+    if (v < n) map[v] = 0;
+  VertexId next = 0;
+  const std::size_t na = num_vertex_attributes_;
+  for (std::size_t v = 0; v < n; ++v) {
+    if (map[v] == kNone) continue;
+    map[v] = next;
+    points_[next] = points_[v];
+    vert_edge_[next] = vert_edge_[v];
+    if (!vertex_markers_.empty()) vertex_markers_[next] = vertex_markers_[v];
+    for (std::size_t k = 0; k < na; ++k) vertex_attributes_[next * na + k] = vertex_attributes_[v * na + k];
+    ++next;
+  }
+  points_.resize(next);
+  vert_edge_.resize(next);
+  if (!vertex_markers_.empty()) vertex_markers_.resize(next);
+  vertex_attributes_.resize(std::size_t{next} * na);
+  for (VertexId& v : tri_v_)
+    if (v < n) v = map[v];
+  return map;
+}
+
+}  // namespace deltamesh
