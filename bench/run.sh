@@ -24,7 +24,8 @@ if [ ! -x "$bin/bench_delaunay" ]; then
   exit 1
 fi
 
-echo "== bench_delaunay: library calls (medians of the repetitions)"
+read -r load1 _ </proc/loadavg 2>/dev/null || load1=0
+echo "== bench_delaunay: library calls (medians of the repetitions); load average $load1 on $(nproc) cores"
 "$bin/bench_delaunay" --benchmark_format=console --benchmark_out="$json" \
   --benchmark_out_format=json "$@"
 echo "JSON written to $json"
@@ -95,6 +96,7 @@ echo "== summary (medians; ratio = CGAL time / deltamesh time, > 1: deltamesh fa
     /"aggregate_name":/ { split($0, q, "\""); agg = q[4] }
     /"error_occurred":/ { err = 1 }
     /"real_time":/      { gsub(/[ ,]/, "", $2); t = $2 }
+    /"cpu_time":/       { gsub(/[ ,]/, "", $2); cpu = $2 }
     /"us_per_pt":/      { gsub(/[ ,]/, "", $2); us = $2 }
     /"B_per_tri":/      { gsub(/[ ,]/, "", $2); bt = $2 }
     /^ *}/ {
@@ -102,8 +104,9 @@ echo "== summary (medians; ratio = CGAL time / deltamesh time, > 1: deltamesh fa
         split(run, p, "/"); c = p[3]
         if (!(c in seen)) { seen[c] = 1; order[++n] = c }
         T[c, p[2]] = t; US[c, p[2]] = us; BT[c, p[2]] = bt
+        if (t > 1.15 * cpu) busy = 1
       }
-      run = agg = t = us = bt = ""; err = 0
+      run = agg = t = us = bt = cpu = ""; err = 0
     }
     function f(x, fmt) { return x == "" ? "-" : sprintf(fmt, x) }
     END {
@@ -114,6 +117,7 @@ echo "== summary (medians; ratio = CGAL time / deltamesh time, > 1: deltamesh fa
         printf "%-16s %12s %12s %7s %10s %10s %9s %9s\n", c, f(d, "%.1f ms"), f(g, "%.1f ms"), r,
           f(US[c, "deltamesh"], "%.3f"), f(US[c, "cgal"], "%.3f"), f(BT[c, "deltamesh"], "%.1f"), f(BT[c, "cgal"], "%.1f")
       }
+      if (busy) print "warning: wall time exceeds CPU time by over 15% in some case: the machine was busy, figures are inflated" > "/dev/stderr"
     }' "$json"
   for w in "${whole[@]}"; do
     IFS='|' read -r name dm cg label <<<"$w"
