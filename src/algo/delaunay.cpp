@@ -35,6 +35,150 @@ void make_first_triangle(Mesh& mesh, VertexId a, VertexId b, VertexId c) {
   }
 }
 
+
+// The bulk builder: the same split + Lawson flips as detail::DelaunayInserter,
+// on the raw arrays and without per-vertex out-edges (compact() rebuilds
+// them), because this loop is where a 10^6-point triangulation spends its time.
+class BulkBuilder {
+ public:
+  explicit BulkBuilder(Mesh& mesh)
+      : mesh_(mesh), v_(mesh.tri_v_mut()), tw_(mesh.twin_mut()), p_(mesh.points().data()) {
+    stack_.reserve(64);
+  }
+
+  // Inserts vertex v; returns v, or the vertex it coincides with. `hint`
+  // is updated to a triangle near v for the next walk.
+  VertexId insert(VertexId v, TriId& hint) {
+    const Point& p = p_[v];
+    TriId t = hint;
+    HalfEdgeId from = kNone;  // the half-edge we entered t through
+    for (;;) {
+      const HalfEdgeId base = 3 * t;
+      // Start after the entry edge: it cannot be an exit.
+      const HalfEdgeId first = from == kNone ? base : next_edge(from);
+      HalfEdgeId exit = kNone, zero = kNone;
+      int zeros = 0;
+      HalfEdgeId e = first;
+      for (int k = 0; k < 3; ++k, e = next_edge(e)) {
+        if (e == from) continue;
+        const double o = orient2d(p_[v_[e]], p_[v_[next_edge(e)]], p);
+        if (o < 0) {
+          exit = e;
+          break;
+        }
+        if (o == 0) {
+          ++zeros;
+          zero = e;
+        }
+      }
+      if (exit == kNone) {
+        if (zeros == 2) {  // on a vertex: the one both zero edges share
+          for (int i = 0; i < 3; ++i)
+            if (p_[v_[base + i]] == p) {
+              hint = t;
+              return v_[base + i];
+            }
+        }
+        if (zeros >= 1) {
+          const HalfEdgeId f = tw_[zero];
+          const HalfEdgeId g0 = mesh_.split_edge(zero, v);
+          push(prev_edge(zero));
+          push(g0 + 1);
+          push(prev_edge(f));
+          push(next_edge(tw_[zero]));
+        } else {
+          split(t, v);
+        }
+        break;
+      }
+      from = tw_[exit];
+      t = tri_of(from);
+      if (is_ghost(t)) {
+        split(t, v);
+        break;
+      }
+    }
+    legalize(v);
+    hint = real_near(last_);
+    return v;
+  }
+
+ private:
+  bool is_ghost(TriId t) const {
+    return v_[3 * t] == kInfinite || v_[3 * t + 1] == kInfinite || v_[3 * t + 2] == kInfinite;
+  }
+  void push(HalfEdgeId e) { stack_.push_back(e); }
+  // t itself, or the real triangle across a ghost's hull edge.
+  TriId real_near(TriId t) const {
+    for (int i = 0; i < 3; ++i) {
+      const HalfEdgeId e = 3 * t + i;
+      if (v_[e] == kInfinite) return tri_of(tw_[next_edge(e)]);
+    }
+    return t;
+  }
+
+  void split(TriId t, VertexId v) {
+    const HalfEdgeId r = mesh_.split_triangle(t, v);
+    push(r - 2);
+    push(tw_[r - 1] - 2);
+    push(tw_[r] - 1);
+  }
+
+  void flip(HalfEdgeId e, HalfEdgeId f) {
+    const HalfEdgeId e1 = next_edge(e), e2 = prev_edge(e);
+    const HalfEdgeId f1 = next_edge(f), f2 = prev_edge(f);
+    const VertexId a = v_[e], b = v_[e1], c = v_[e2], d = v_[f2];
+    const HalfEdgeId tw_bc = tw_[e1], tw_ca = tw_[e2], tw_ad = tw_[f1], tw_db = tw_[f2];
+    v_[e] = c;
+    v_[e1] = a;
+    v_[e2] = d;
+    v_[f] = d;
+    v_[f1] = b;
+    v_[f2] = c;
+    tw_[e] = tw_ca;
+    tw_[tw_ca] = e;
+    tw_[e1] = tw_ad;
+    tw_[tw_ad] = e1;
+    tw_[f] = tw_db;
+    tw_[tw_db] = f;
+    tw_[f1] = tw_bc;
+    tw_[tw_bc] = f1;
+    tw_[e2] = f2;
+    tw_[f2] = e2;
+  }
+
+  void legalize(VertexId v) {
+    const Point& p = p_[v];
+    while (!stack_.empty()) {
+      const HalfEdgeId e = stack_.back();
+      stack_.pop_back();
+      last_ = tri_of(e);
+      const HalfEdgeId f = tw_[e];
+      const VertexId a = v_[e], b = v_[next_edge(e)], d = v_[prev_edge(f)];
+      bool flip_it;
+      if (d == kInfinite)
+        flip_it = false;
+      else if (b == kInfinite)
+        flip_it = orient2d(p_[a], p_[d], p) > 0;
+      else if (a == kInfinite)
+        flip_it = orient2d(p_[d], p_[b], p) > 0;
+      else
+        flip_it = incircle(p_[a], p_[b], p, p_[d]) > 0;
+      if (!flip_it) continue;
+      flip(e, f);
+      push(next_edge(e));
+      push(f);
+    }
+  }
+
+  Mesh& mesh_;
+  std::vector<VertexId>& v_;
+  std::vector<HalfEdgeId>& tw_;
+  const Point* p_;
+  std::vector<HalfEdgeId> stack_;
+  TriId last_ = 0;
+};
+
 }  // namespace
 
 Mesh delaunay(std::span<const Point> points, const DelaunayOptions& options, DelaunayStats* stats) {
@@ -76,23 +220,29 @@ Mesh delaunay(std::span<const Point> points, const DelaunayOptions& options, Del
 
   std::vector<VertexId> dup_of;  // in insertion order, only when asked for
   if (stats) dup_of.assign(n, kNone);
+  BulkBuilder builder(mesh);
   std::size_t duplicates = 0;
-  detail::DelaunayInserter inserter(mesh);
   TriId hint = 0;
   for (std::size_t k = 1; k < n; ++k) {
     if (k == i1 || k == i2) continue;
     const VertexId v = static_cast<VertexId>(k);
-    const auto r = inserter.insert_existing(v, hint);
-    if (r.vertex != v) {
+    const VertexId got = builder.insert(v, hint);
+    if (got != v) {
       ++duplicates;
-      if (stats) dup_of[k] = r.vertex;
-      continue;
+      if (stats) dup_of[k] = got;
     }
-    hint = r.tri;
   }
+  mesh.recount();
   if (stats) stats->insert_seconds = seconds_since(t0);
 
-  if (!options.keep_ghosts) mesh.compact();
+  if (options.keep_ghosts) {
+    std::vector<HalfEdgeId>& ve = mesh.vert_edge_mut();
+    const std::vector<VertexId>& tv = mesh.tri_v_mut();
+    for (HalfEdgeId e = 0; e < tv.size(); ++e)
+      if (tv[e] < n) ve[tv[e]] = e;
+  } else {
+    mesh.compact();
+  }
 
   // Back to input numbering: vertex ids become input indices.
   for (VertexId& v : mesh.tri_v_mut())

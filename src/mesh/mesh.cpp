@@ -320,36 +320,53 @@ Location Mesh::locate(const Point& p, TriId start) const {
 }
 
 void Mesh::compact() {
-  const std::size_t slots = num_triangle_slots();
-  std::vector<TriId> new_id(slots, kNone);
-  TriId next = 0;
-  for (TriId t = 0; t < slots; ++t)
-    if (!is_dead(t) && !is_ghost(t)) new_id[t] = next++;
+  // Ghost and dead triangles are few (a hull's worth), so rather than
+  // renumbering everything, move the last live triangles into their slots.
   const std::size_t na = num_triangle_attributes_;
+  std::vector<TriId> holes;
+  std::size_t slots = num_triangle_slots();
   for (TriId t = 0; t < slots; ++t) {
-    const TriId n = new_id[t];
-    if (n == kNone) continue;
+    if (is_dead(t)) {
+      holes.push_back(t);
+    } else if (is_ghost(t)) {
+      holes.push_back(t);
+      for (int i = 0; i < 3; ++i) {
+        const HalfEdgeId tw = twin_[3 * t + i];
+        if (tw != kNone && !is_ghost(tri_of(tw))) twin_[tw] = kNone;
+      }
+    }
+  }
+  auto live = [&](TriId t) { return !is_dead(t) && !is_ghost(t); };
+  std::size_t h = 0;
+  while (h < holes.size()) {
+    while (slots > 0 && !live(static_cast<TriId>(slots - 1))) --slots;
+    const TriId hole = holes[h++];
+    if (hole >= slots) break;
+    const TriId from = static_cast<TriId>(slots - 1);
     for (int i = 0; i < 3; ++i) {
-      const HalfEdgeId o = 3 * t + i, m = 3 * n + i;
+      const HalfEdgeId o = 3 * from + i, m = 3 * hole + i;
       tri_v_[m] = tri_v_[o];
-      const HalfEdgeId tw = twin_[o];
-      twin_[m] = (tw == kNone || new_id[tri_of(tw)] == kNone) ? kNone : 3 * new_id[tri_of(tw)] + tw % 3;
+      twin_[m] = twin_[o];
+      if (twin_[m] != kNone) twin_[twin_[m]] = m;
       if (!edge_flags_.empty()) edge_flags_[m] = edge_flags_[o];
     }
-    for (std::size_t k = 0; k < na; ++k) triangle_attributes_[n * na + k] = triangle_attributes_[t * na + k];
+    for (std::size_t k = 0; k < na; ++k) triangle_attributes_[hole * na + k] = triangle_attributes_[from * na + k];
+    tri_v_[3 * from] = kNone;  // now dead
+    --slots;
   }
-  tri_v_.resize(3 * std::size_t{next});
-  twin_.resize(3 * std::size_t{next});
-  if (!edge_flags_.empty()) edge_flags_.resize(3 * std::size_t{next});
-  triangle_attributes_.resize(std::size_t{next} * na);
+  while (slots > 0 && !live(static_cast<TriId>(slots - 1))) --slots;
+  tri_v_.resize(3 * slots);
+  twin_.resize(3 * slots);
+  if (!edge_flags_.empty()) edge_flags_.resize(3 * slots);
+  triangle_attributes_.resize(slots * na);
   // No shrink_to_fit: reallocating would double the peak memory here.
   free_.clear();
-  free_.shrink_to_fit();
   std::fill(vert_edge_.begin(), vert_edge_.end(), kNone);
   for (HalfEdgeId e = 0; e < tri_v_.size(); ++e) vert_edge_[tri_v_[e]] = e;
-  for (HalfEdgeId e = 0; e < tri_v_.size(); ++e)
+  // A boundary vertex starts its fan at its boundary edge (most clockwise).
+  for (HalfEdgeId e = 0; e < twin_.size(); ++e)
     if (twin_[e] == kNone) vert_edge_[tri_v_[e]] = e;
-  live_real_ = next;
+  live_real_ = slots;
   compacted_ = true;
 }
 
