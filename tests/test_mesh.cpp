@@ -170,3 +170,23 @@ TEST(Mesh, MemoryAccounting) {
   const Mesh m = square();
   EXPECT_GE(m.memory_bytes(), 4 * sizeof(Point) + 6 * 2 * sizeof(std::uint32_t));
 }
+
+TEST(Mesh, MarkersFollowEdgesThroughFlipsAndSplits) {
+  Mesh m = square();
+  m.constrain_edge(m.find_edge(0, 1), 7);
+  m.constrain_edge(m.find_edge(1, 2), 9);
+  m.flip(m.find_edge(0, 2));
+  EXPECT_EQ(m.edge_marker(m.find_edge(0, 1)), 7);
+  EXPECT_EQ(m.edge_marker(m.find_edge(1, 2)), 9);
+  const VertexId p = m.add_vertex({0.5, 0.0});
+  m.split_edge(m.find_edge(0, 1), p);
+  EXPECT_EQ(m.edge_marker(m.find_edge(0, p)), 7);
+  EXPECT_EQ(m.edge_marker(m.find_edge(p, 1)), 7);
+  EXPECT_TRUE(m.is_constrained(m.find_edge(p, 1)));
+  const VertexId q = m.add_vertex({0.6, 0.6});
+  const Location loc = m.locate(m.point(q));
+  ASSERT_EQ(loc.kind, Location::Kind::InTriangle);
+  m.split_triangle(loc.tri, q);
+  EXPECT_EQ(m.edge_marker(m.find_edge(1, 2)), 9);
+  EXPECT_TRUE(check(m, no_delaunay()).ok()) << check(m, no_delaunay()).summary();
+}

@@ -48,3 +48,20 @@ class IoError : public Error {
 };
 
 }  // namespace deltamesh
+
+namespace deltamesh {
+
+// Two input segments cross (reported under --strict instead of being split).
+class IntersectingSegments : public InputError {
+ public:
+  IntersectingSegments(std::size_t first, std::size_t second)
+      : InputError("segments " + std::to_string(first) + " and " + std::to_string(second) + " cross"),
+        first_(first), second_(second) {}
+  std::size_t first() const { return first_; }
+  std::size_t second() const { return second_; }
+
+ private:
+  std::size_t first_, second_;
+};
+
+}  // namespace deltamesh

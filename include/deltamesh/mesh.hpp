@@ -77,6 +77,10 @@ class Mesh {
   bool has_edge_flags() const { return !edge_flags_.empty(); }
   std::uint8_t edge_flags(HalfEdgeId e) const { return edge_flags_.empty() ? 0 : edge_flags_[e]; }
   bool is_constrained(HalfEdgeId e) const { return (edge_flags(e) & kConstrained) != 0; }
+  // Boundary marker of the segment an edge belongs to (0 when none); kept on
+  // both half-edges, moved by flips and copied by splits like the flags.
+  bool has_edge_markers() const { return !edge_markers_.empty(); }
+  int edge_marker(HalfEdgeId e) const { return edge_markers_.empty() ? 0 : edge_markers_[e]; }
 
   // Calls f(e) for each outgoing half-edge of v, counter-clockwise (rotary
   // traversal, §1.2.1). Stops early when f returns false.
@@ -109,6 +113,16 @@ class Mesh {
   }
   void set_out_edge(VertexId v, HalfEdgeId e) { vert_edge_[v] = e; }
   void set_edge_flags(HalfEdgeId e, std::uint8_t flags);
+  void set_edge_marker(HalfEdgeId e, int marker);
+  // Marks both halves of an edge as a constrained segment with a marker.
+  void constrain_edge(HalfEdgeId e, int marker = 0) {
+    set_edge_flags(e, edge_flags(e) | kConstrained);
+    set_edge_marker(e, marker);
+    if (twin_[e] != kNone) {
+      set_edge_flags(twin_[e], edge_flags(twin_[e]) | kConstrained);
+      set_edge_marker(twin_[e], marker);
+    }
+  }
 
   // ---- topological operations ----------------------------------------------
   // Flips the edge of half-edge e = (a,b) between triangles (a,b,c) and (b,a,d)
@@ -141,6 +155,7 @@ class Mesh {
   std::vector<HalfEdgeId>& twin_mut() { return twin_; }
   std::vector<HalfEdgeId>& vert_edge_mut() { return vert_edge_; }
   std::vector<std::uint8_t>& edge_flags_mut() { return edge_flags_; }
+  std::vector<int>& edge_markers_mut() { return edge_markers_; }
   // Recounts live real triangles after bulk edits through the *_mut arrays.
   void recount();
   void set_live_real(std::size_t n) { live_real_ = n; }
@@ -183,6 +198,7 @@ class Mesh {
   std::vector<HalfEdgeId> twin_;
   std::vector<HalfEdgeId> vert_edge_;
   std::vector<std::uint8_t> edge_flags_;  // empty until a flag is set
+  std::vector<int> edge_markers_;         // empty until a marker is set
   std::vector<TriId> free_;
   std::vector<int> vertex_markers_;
   std::vector<double> vertex_attributes_;

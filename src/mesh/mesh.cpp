@@ -36,6 +36,7 @@ TriId Mesh::add_triangle(VertexId a, VertexId b, VertexId c) {
     tri_v_.resize(tri_v_.size() + 3);
     twin_.resize(twin_.size() + 3);
     if (!edge_flags_.empty()) edge_flags_.resize(tri_v_.size(), 0);
+    if (!edge_markers_.empty()) edge_markers_.resize(tri_v_.size(), 0);
     if (num_triangle_attributes_ > 0)
       triangle_attributes_.resize((t + 1) * num_triangle_attributes_, 0.0);
   }
@@ -45,6 +46,7 @@ TriId Mesh::add_triangle(VertexId a, VertexId b, VertexId c) {
   tri_v_[e + 2] = c;
   twin_[e] = twin_[e + 1] = twin_[e + 2] = kNone;
   if (!edge_flags_.empty()) edge_flags_[e] = edge_flags_[e + 1] = edge_flags_[e + 2] = 0;
+  if (!edge_markers_.empty()) edge_markers_[e] = edge_markers_[e + 1] = edge_markers_[e + 2] = 0;
   note_added(t);
   compacted_ = false;
   return t;
@@ -67,6 +69,14 @@ void Mesh::set_edge_flags(HalfEdgeId e, std::uint8_t flags) {
     edge_flags_.assign(tri_v_.size(), 0);
   }
   edge_flags_[e] = flags;
+}
+
+void Mesh::set_edge_marker(HalfEdgeId e, int marker) {
+  if (edge_markers_.empty()) {
+    if (marker == 0) return;
+    edge_markers_.assign(tri_v_.size(), 0);
+  }
+  edge_markers_[e] = marker;
 }
 
 HalfEdgeId Mesh::flip(HalfEdgeId e) {
@@ -106,6 +116,15 @@ HalfEdgeId Mesh::flip(HalfEdgeId e) {
     edge_flags_[f1] = fl_bc;
     edge_flags_[f2] = 0;
   }
+  if (!edge_markers_.empty()) {
+    const int m_bc = edge_markers_[e1], m_ca = edge_markers_[e2], m_ad = edge_markers_[f1], m_db = edge_markers_[f2];
+    edge_markers_[e0] = m_ca;
+    edge_markers_[e1] = m_ad;
+    edge_markers_[e2] = 0;
+    edge_markers_[f0] = m_db;
+    edge_markers_[f1] = m_bc;
+    edge_markers_[f2] = 0;
+  }
   // Keep each vertex's out-edge pointing at an edge that plays the same role.
   if (a != kInfinite && (vert_edge_[a] == e0 || vert_edge_[a] == f1)) vert_edge_[a] = e1;
   if (b != kInfinite && (vert_edge_[b] == e1 || vert_edge_[b] == f0)) vert_edge_[b] = f1;
@@ -121,6 +140,7 @@ HalfEdgeId Mesh::split_triangle(TriId t, VertexId p) {
   const VertexId a = tri_v_[e0], b = tri_v_[e1], c = tri_v_[e2];
   const HalfEdgeId tw_bc = twin_[e1], tw_ca = twin_[e2];
   const std::uint8_t fl_bc = edge_flags(e1), fl_ca = edge_flags(e2);
+  const int m_bc = edge_marker(e1), m_ca = edge_marker(e2);
   note_removed(t);
   const TriId t1 = add_triangle(b, c, p);
   const TriId t2 = add_triangle(c, a, p);
@@ -141,6 +161,11 @@ HalfEdgeId Mesh::split_triangle(TriId t, VertexId p) {
     edge_flags_[h0] = fl_ca;
     edge_flags_[e1] = edge_flags_[e2] = 0;
   }
+  if (!edge_markers_.empty()) {
+    edge_markers_[g0] = m_bc;
+    edge_markers_[h0] = m_ca;
+    edge_markers_[e1] = edge_markers_[e2] = 0;
+  }
   if (num_triangle_attributes_ > 0) {
     for (std::size_t k = 0; k < num_triangle_attributes_; ++k) {
       const double v = triangle_attributes_[t * num_triangle_attributes_ + k];
@@ -160,6 +185,7 @@ HalfEdgeId Mesh::split_edge(HalfEdgeId e, VertexId p) {
   const VertexId a = tri_v_[e0], b = tri_v_[e1], c = tri_v_[e2];
   const HalfEdgeId tw_bc = twin_[e1];
   const std::uint8_t fl_e = edge_flags(e0), fl_bc = edge_flags(e1);
+  const int m_e = edge_marker(e0), m_bc = edge_marker(e1);
   const TriId t1 = tri_of(e);
   note_removed(t1);
   // (a, b, c) becomes (a, p, c) + new (p, b, c).
@@ -181,6 +207,11 @@ HalfEdgeId Mesh::split_edge(HalfEdgeId e, VertexId p) {
     edge_flags_[g0 + 1] = fl_bc;
     edge_flags_[e1] = edge_flags_[g0 + 2] = 0;
   }
+  if (!edge_markers_.empty()) {
+    edge_markers_[g0] = m_e;
+    edge_markers_[g0 + 1] = m_bc;
+    edge_markers_[e1] = edge_markers_[g0 + 2] = 0;
+  }
   if (b != kInfinite && vert_edge_[b] == e1) vert_edge_[b] = g0 + 1;
   if (p != kInfinite) vert_edge_[p] = g0;
   if (f == kNone) {
@@ -192,6 +223,7 @@ HalfEdgeId Mesh::split_edge(HalfEdgeId e, VertexId p) {
   const HalfEdgeId f0 = f, f1 = next_edge(f);
   const HalfEdgeId tw_ad = twin_[f1];
   const std::uint8_t fl_f = edge_flags(f0), fl_ad = edge_flags(f1);
+  const int m_f = edge_marker(f0), m_ad = edge_marker(f1);
   const VertexId d = tri_v_[prev_edge(f)];
   const TriId t2 = tri_of(f);
   note_removed(t2);
@@ -209,6 +241,11 @@ HalfEdgeId Mesh::split_edge(HalfEdgeId e, VertexId p) {
     edge_flags_[h0] = fl_f;
     edge_flags_[h0 + 1] = fl_ad;
     edge_flags_[f1] = edge_flags_[h0 + 2] = 0;
+  }
+  if (!edge_markers_.empty()) {
+    edge_markers_[h0] = m_f;
+    edge_markers_[h0 + 1] = m_ad;
+    edge_markers_[f1] = edge_markers_[h0 + 2] = 0;
   }
   if (a != kInfinite && vert_edge_[a] == f1) vert_edge_[a] = h0 + 1;
   (void)d;
@@ -349,6 +386,7 @@ void Mesh::compact() {
       twin_[m] = twin_[o];
       if (twin_[m] != kNone) twin_[twin_[m]] = m;
       if (!edge_flags_.empty()) edge_flags_[m] = edge_flags_[o];
+      if (!edge_markers_.empty()) edge_markers_[m] = edge_markers_[o];
     }
     for (std::size_t k = 0; k < na; ++k) triangle_attributes_[hole * na + k] = triangle_attributes_[from * na + k];
     tri_v_[3 * from] = kNone;  // now dead
@@ -358,6 +396,7 @@ void Mesh::compact() {
   tri_v_.resize(3 * slots);
   twin_.resize(3 * slots);
   if (!edge_flags_.empty()) edge_flags_.resize(3 * slots);
+  if (!edge_markers_.empty()) edge_markers_.resize(3 * slots);
   triangle_attributes_.resize(slots * na);
   // No shrink_to_fit: reallocating would double the peak memory here.
   free_.clear();
@@ -379,7 +418,7 @@ void Mesh::recount() {
 std::size_t Mesh::memory_bytes() const {
   return points_.capacity() * sizeof(Point) + tri_v_.capacity() * sizeof(VertexId) +
          twin_.capacity() * sizeof(HalfEdgeId) + vert_edge_.capacity() * sizeof(HalfEdgeId) +
-         edge_flags_.capacity() + free_.capacity() * sizeof(TriId) +
+         edge_flags_.capacity() + edge_markers_.capacity() * sizeof(int) + free_.capacity() * sizeof(TriId) +
          vertex_markers_.capacity() * sizeof(int) +
          (vertex_attributes_.capacity() + triangle_attributes_.capacity()) * sizeof(double);
 }
