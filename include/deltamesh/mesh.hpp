@@ -180,12 +180,19 @@ class Mesh {
   std::vector<double>& triangle_attributes() { return triangle_attributes_; }
   const std::vector<double>& triangle_attributes() const { return triangle_attributes_; }
 
+  // Per-triangle maximum area (empty, or one per triangle slot; <= 0 means
+  // no bound), carried through splits and compaction like the attributes.
+  bool has_triangle_area_bounds() const { return !triangle_area_bounds_.empty(); }
+  double triangle_area_bound(TriId t) const { return triangle_area_bounds_.empty() ? -1.0 : triangle_area_bounds_[t]; }
+  void set_triangle_area_bound(TriId t, double max_area);
+
   // Removes vertices in no triangle (duplicates, points in holes) and
   // renumbers the rest in order, as Triangle's -j does. Returns old -> new id
   // (kNone for removed vertices). Requires a compacted mesh.
   std::vector<VertexId> remove_unused_vertices();
 
  private:
+  void copy_triangle_data(TriId from, TriId to);
   void note_added(TriId t) {
     if (!is_ghost(t)) ++live_real_;
   }
@@ -203,6 +210,7 @@ class Mesh {
   std::vector<int> vertex_markers_;
   std::vector<double> vertex_attributes_;
   std::vector<double> triangle_attributes_;
+  std::vector<double> triangle_area_bounds_;
   std::size_t num_vertex_attributes_ = 0;
   std::size_t num_triangle_attributes_ = 0;
   std::size_t live_real_ = 0;

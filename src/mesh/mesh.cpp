@@ -39,6 +39,7 @@ TriId Mesh::add_triangle(VertexId a, VertexId b, VertexId c) {
     if (!edge_markers_.empty()) edge_markers_.resize(tri_v_.size(), 0);
     if (num_triangle_attributes_ > 0)
       triangle_attributes_.resize((t + 1) * num_triangle_attributes_, 0.0);
+    if (!triangle_area_bounds_.empty()) triangle_area_bounds_.resize(t + 1, -1.0);
   }
   const HalfEdgeId e = 3 * t;
   tri_v_[e] = a;
@@ -69,6 +70,20 @@ void Mesh::set_edge_flags(HalfEdgeId e, std::uint8_t flags) {
     edge_flags_.assign(tri_v_.size(), 0);
   }
   edge_flags_[e] = flags;
+}
+
+void Mesh::copy_triangle_data(TriId from, TriId to) {
+  const std::size_t na = num_triangle_attributes_;
+  for (std::size_t k = 0; k < na; ++k) triangle_attributes_[to * na + k] = triangle_attributes_[from * na + k];
+  if (!triangle_area_bounds_.empty()) triangle_area_bounds_[to] = triangle_area_bounds_[from];
+}
+
+void Mesh::set_triangle_area_bound(TriId t, double max_area) {
+  if (triangle_area_bounds_.empty()) {
+    if (max_area <= 0) return;
+    triangle_area_bounds_.assign(num_triangle_slots(), -1.0);
+  }
+  triangle_area_bounds_[t] = max_area;
 }
 
 void Mesh::set_edge_marker(HalfEdgeId e, int marker) {
@@ -166,13 +181,8 @@ HalfEdgeId Mesh::split_triangle(TriId t, VertexId p) {
     edge_markers_[h0] = m_ca;
     edge_markers_[e1] = edge_markers_[e2] = 0;
   }
-  if (num_triangle_attributes_ > 0) {
-    for (std::size_t k = 0; k < num_triangle_attributes_; ++k) {
-      const double v = triangle_attributes_[t * num_triangle_attributes_ + k];
-      triangle_attributes_[t1 * num_triangle_attributes_ + k] = v;
-      triangle_attributes_[t2 * num_triangle_attributes_ + k] = v;
-    }
-  }
+  copy_triangle_data(t, t1);
+  copy_triangle_data(t, t2);
   if (b != kInfinite && vert_edge_[b] == e1) vert_edge_[b] = g0;
   if (c != kInfinite && vert_edge_[c] == e2) vert_edge_[c] = h0;
   if (p != kInfinite) vert_edge_[p] = e2;
@@ -196,12 +206,7 @@ HalfEdgeId Mesh::split_edge(HalfEdgeId e, VertexId p) {
   twin_[g0 + 1] = tw_bc;
   if (tw_bc != kNone) twin_[tw_bc] = g0 + 1;
   link(e1, g0 + 2);
-  auto copy_attributes = [&](TriId from, TriId to) {
-    for (std::size_t k = 0; k < num_triangle_attributes_; ++k)
-      triangle_attributes_[to * num_triangle_attributes_ + k] =
-          triangle_attributes_[from * num_triangle_attributes_ + k];
-  };
-  copy_attributes(t1, t3);
+  copy_triangle_data(t1, t3);
   if (!edge_flags_.empty()) {
     edge_flags_[g0] = fl_e;
     edge_flags_[g0 + 1] = fl_bc;
@@ -234,7 +239,7 @@ HalfEdgeId Mesh::split_edge(HalfEdgeId e, VertexId p) {
   twin_[h0 + 1] = tw_ad;
   if (tw_ad != kNone) twin_[tw_ad] = h0 + 1;
   link(f1, h0 + 2);
-  copy_attributes(t2, t4);
+  copy_triangle_data(t2, t4);
   link(e0, h0);
   link(g0, f0);
   if (!edge_flags_.empty()) {
@@ -388,7 +393,7 @@ void Mesh::compact() {
       if (!edge_flags_.empty()) edge_flags_[m] = edge_flags_[o];
       if (!edge_markers_.empty()) edge_markers_[m] = edge_markers_[o];
     }
-    for (std::size_t k = 0; k < na; ++k) triangle_attributes_[hole * na + k] = triangle_attributes_[from * na + k];
+    copy_triangle_data(from, hole);
     tri_v_[3 * from] = kNone;  // now dead
     --slots;
   }
@@ -398,6 +403,7 @@ void Mesh::compact() {
   if (!edge_flags_.empty()) edge_flags_.resize(3 * slots);
   if (!edge_markers_.empty()) edge_markers_.resize(3 * slots);
   triangle_attributes_.resize(slots * na);
+  if (!triangle_area_bounds_.empty()) triangle_area_bounds_.resize(slots);
   // No shrink_to_fit: reallocating would double the peak memory here.
   free_.clear();
   std::fill(vert_edge_.begin(), vert_edge_.end(), kNone);
@@ -420,7 +426,8 @@ std::size_t Mesh::memory_bytes() const {
          twin_.capacity() * sizeof(HalfEdgeId) + vert_edge_.capacity() * sizeof(HalfEdgeId) +
          edge_flags_.capacity() + edge_markers_.capacity() * sizeof(int) + free_.capacity() * sizeof(TriId) +
          vertex_markers_.capacity() * sizeof(int) +
-         (vertex_attributes_.capacity() + triangle_attributes_.capacity()) * sizeof(double);
+         (vertex_attributes_.capacity() + triangle_attributes_.capacity() + triangle_area_bounds_.capacity()) *
+             sizeof(double);
 }
 
 std::vector<VertexId> Mesh::remove_unused_vertices() {
