@@ -1,0 +1,189 @@
+#include "io/text_reader.hpp"
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <charconv>
+#include <cmath>
+#include <cstring>
+#include <system_error>
+
+namespace deltamesh::io {
+
+namespace {
+
+std::string errno_text(int err) { return std::generic_category().message(err); }
+
+bool is_space(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f'; }
+
+class Fd {
+ public:
+  explicit Fd(int fd) : fd_(fd) {}
+  ~Fd() {
+    if (fd_ >= 0) ::close(fd_);
+  }
+  Fd(const Fd&) = delete;
+  Fd& operator=(const Fd&) = delete;
+  int get() const { return fd_; }
+
+ private:
+  int fd_;
+};
+
+}  // namespace
+
+std::string read_whole_file(const std::string& path) {
+  Fd fd(::open(path.c_str(), O_RDONLY | O_CLOEXEC));
+  if (fd.get() < 0) throw IoError("cannot open '" + path + "': " + errno_text(errno));
+  struct stat st {};
+  if (::fstat(fd.get(), &st) != 0) throw IoError("cannot read '" + path + "': " + errno_text(errno));
+  if (S_ISDIR(st.st_mode)) throw IoError("cannot read '" + path + "': " + errno_text(EISDIR));
+  std::string text;
+  // Regular files: one read of the known size. Pipes and growing files: the
+  // buffer grows until end of file.
+  std::size_t capacity = S_ISREG(st.st_mode) ? static_cast<std::size_t>(st.st_size) + 1 : 65536;
+  text.resize(capacity);
+  std::size_t used = 0;
+  for (;;) {
+    if (used == text.size()) text.resize(text.size() * 2);
+    const ssize_t got = ::read(fd.get(), text.data() + used, text.size() - used);
+    if (got < 0) {
+      if (errno == EINTR) continue;
+      throw IoError("cannot read '" + path + "': " + errno_text(errno));
+    }
+    if (got == 0) break;
+    used += static_cast<std::size_t>(got);
+  }
+  text.resize(used);
+  return text;
+}
+
+NumberStatus parse_double(std::string_view token, double& value) {
+  const char* first = token.data();
+  const char* last = first + token.size();
+  const bool plus = first != last && *first == '+';
+  if (plus) ++first;
+  if (first == last || (plus && (*first == '+' || *first == '-'))) return NumberStatus::NotANumber;
+  const auto [ptr, ec] = std::from_chars(first, last, value, std::chars_format::general);
+  if (ptr != last) return NumberStatus::NotANumber;
+  if (ec == std::errc::result_out_of_range) return NumberStatus::OutOfRange;
+  if (ec != std::errc()) return NumberStatus::NotANumber;
+  return NumberStatus::Ok;
+}
+
+NumberStatus parse_integer(std::string_view token, long long& value) {
+  const char* first = token.data();
+  const char* last = first + token.size();
+  const bool plus = first != last && *first == '+';
+  if (plus) ++first;
+  if (first == last || (plus && (*first == '+' || *first == '-'))) return NumberStatus::NotANumber;
+  const auto [ptr, ec] = std::from_chars(first, last, value, 10);
+  if (ptr == last) return ec == std::errc::result_out_of_range ? NumberStatus::OutOfRange : NumberStatus::Ok;
+  // Not a plain integer: accept an integral floating-point spelling ("3.0").
+  double d;
+  const NumberStatus s = parse_double(token, d);
+  if (s != NumberStatus::Ok) return s;
+  if (!std::isfinite(d) || d != std::floor(d)) return NumberStatus::NotAnInteger;
+  if (std::fabs(d) >= 9.2e18) return NumberStatus::OutOfRange;
+  value = static_cast<long long>(d);
+  return NumberStatus::Ok;
+}
+
+std::string plural(long long n, std::string_view one, std::string_view many) {
+  std::string s = std::to_string(n);
+  s += ' ';
+  s += n == 1 ? one : many;
+  return s;
+}
+
+TextReader::TextReader(std::string file_name, std::string text)
+    : file_(std::move(file_name)), text_(std::move(text)) {
+  tokens_.reserve(16);
+  // A UTF-8 byte order mark (some Windows editors write one) is not data.
+  if (text_.compare(0, 3, "\xEF\xBB\xBF") == 0) pos_ = 3;
+}
+
+TextReader TextReader::open(const std::string& path) { return TextReader(path, read_whole_file(path)); }
+
+std::size_t TextReader::line_end(std::size_t from) const {
+  const void* nl = std::memchr(text_.data() + from, '\n', text_.size() - from);
+  return nl == nullptr ? text_.size() : static_cast<std::size_t>(static_cast<const char*>(nl) - text_.data());
+}
+
+bool TextReader::holds_data(std::size_t from, std::size_t end) const {
+  for (std::size_t i = from; i < end; ++i) {
+    const char c = text_[i];
+    if (c == '#') return false;
+    if (!is_space(c)) return true;
+  }
+  return false;
+}
+
+bool TextReader::has_more_data() {
+  while (pos_ < text_.size()) {
+    const std::size_t end = line_end(pos_);
+    if (holds_data(pos_, end)) return true;
+    pos_ = end + 1;  // may step one past the end: clamped below
+    ++next_line_;
+  }
+  pos_ = text_.size();
+  return false;
+}
+
+bool TextReader::next_line() {
+  tokens_.clear();
+  if (!has_more_data()) return false;
+  const std::size_t end = line_end(pos_);
+  const char* p = text_.data() + pos_;
+  const char* e = text_.data() + end;
+  while (p != e) {
+    while (p != e && is_space(*p)) ++p;
+    if (p == e || *p == '#') break;
+    const char* start = p;
+    while (p != e && !is_space(*p) && *p != '#') ++p;
+    tokens_.emplace_back(start, static_cast<std::size_t>(p - start));
+  }
+  line_ = next_line_;
+  ++next_line_;
+  pos_ = end < text_.size() ? end + 1 : text_.size();
+  return true;
+}
+
+std::size_t TextReader::last_line() const {
+  std::size_t n = 0;
+  for (const char c : text_) n += c == '\n';
+  // A last line without a final newline counts too.
+  if (!text_.empty() && text_.back() != '\n') ++n;
+  return n == 0 ? 1 : n;
+}
+
+std::size_t TextReader::count_data_lines_left() const {
+  std::size_t n = 0;
+  std::size_t p = pos_;
+  while (p < text_.size()) {
+    const std::size_t end = line_end(p);
+    n += holds_data(p, end);
+    p = end + 1;
+  }
+  return n;
+}
+
+void TextReader::number_error(std::size_t i, NumberStatus s, const std::string& what) const {
+  std::string msg = "'";
+  msg += tokens_[i];
+  switch (s) {
+    case NumberStatus::NotAnInteger: msg += "' is not an integer"; break;
+    case NumberStatus::OutOfRange: msg += "' is out of range"; break;
+    default: msg += "' is not a number"; break;
+  }
+  msg += " (expected " + what + ")";
+  fail(msg);
+}
+
+void TextReader::not_finite_error(std::size_t i, const std::string& what) const {
+  fail(what + " is not finite ('" + std::string(tokens_[i]) + "')");
+}
+
+}  // namespace deltamesh::io

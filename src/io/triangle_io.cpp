@@ -1,0 +1,623 @@
+// Triangle's file formats, read and written.
+//
+// Readers follow the format descriptions in Triangle's documentation: every
+// section starts with a count line, entries are numbered consecutively from
+// 0 or 1 (the first entry decides), `#` starts a comment. Missing trailing
+// header fields take Triangle's defaults (dimension 2, no attributes, no
+// markers); extra trailing fields on an entry line are ignored, as Triangle
+// does. Everything else that is wrong is a ParseError naming the line.
+#include "deltamesh/triangle_io.hpp"
+
+#include <array>
+#include <charconv>
+#include <climits>
+#include <cmath>
+#include <string_view>
+
+#include "deltamesh/errors.hpp"
+#include "deltamesh/version.hpp"
+#include "io/atomic_file.hpp"
+#include "io/text_reader.hpp"
+
+namespace deltamesh {
+
+namespace {
+
+using io::plural;
+using io::TextReader;
+
+std::string str(long long v) { return std::to_string(v); }
+
+// ---------------------------------------------------------------------------
+// Reading helpers
+
+// A non-negative count in token i of the current (header) line.
+long long read_count(const TextReader& r, std::size_t i, const char* what) {
+  const long long n = r.integer(i, [&] { return std::string(what); });
+  if (n < 0) r.fail(std::string(what) + " " + str(n) + " is negative");
+  return n;
+}
+
+// Optional header field i (default when absent).
+long long read_optional_count(const TextReader& r, std::size_t i, const char* what, long long dflt) {
+  return i < r.size() ? read_count(r, i, what) : dflt;
+}
+
+// 0 or 1 boundary markers per entry.
+bool read_marker_flag(const TextReader& r, std::size_t i) {
+  const long long m = read_optional_count(r, i, "boundary marker count", 0);
+  if (m > 1) r.fail("boundary marker count " + str(m) + " must be 0 or 1");
+  return m == 1;
+}
+
+// Called on a header line announcing `count` entries of at least `tokens`
+// fields each. Rejects counts the rest of the file cannot hold, so an absurd
+// header never makes the reader allocate for it. The cheap test (each field
+// takes at least one character and one separator) settles almost every file;
+// only when it fails are the remaining data lines counted. Afterwards count
+// is at most the number of lines left, hence bounded by the file size.
+void check_count_fits(const TextReader& r, long long count, std::size_t tokens, const char* nouns) {
+  if (count <= 0) return;
+  const std::size_t room = (r.bytes_left() + 1) / 2;  // fields the rest could hold
+  if (static_cast<unsigned long long>(count) <= room / tokens) return;
+  const std::size_t lines = r.count_data_lines_left();
+  if (static_cast<unsigned long long>(count) > lines)
+    r.fail("header announces " + str(count) + " " + nouns + " but the file has only " +
+           plural(static_cast<long long>(lines), "line", "lines") + " left");
+}
+
+// A capacity to reserve for count * per values: never more than the rest of
+// the file could hold, whatever the header says.
+std::size_t safe_capacity(const TextReader& r, std::size_t count, std::size_t per) {
+  const std::size_t cap = r.bytes_left() / 2 + 1;
+  if (per == 0) return 0;
+  return count > cap / per ? cap : count * per;
+}
+
+// Moves to entry `index` (0-based) of a section announced on `header_line`.
+void next_entry(TextReader& r, long long index, long long count, std::size_t header_line, const char* nouns) {
+  if (!r.next_line())
+    r.fail_at(header_line, "header announces " + str(count) + " " + nouns + " but the file ends after " +
+                               str(index));
+}
+
+// Entry ids: consecutive, from 0 or 1 (the section's first id decides).
+// Returns the id.
+long long check_id(const TextReader& r, long long index, long long& base, const char* noun, const char* nouns) {
+  const long long id = r.integer(0, [&] {
+    return index == 0 ? "the number of the first " + std::string(noun)
+                      : "the number of " + std::string(noun) + " " + str(base + index);
+  });
+  if (index == 0) {
+    if (id != 0 && id != 1)
+      r.fail("the first " + std::string(noun) + " is numbered " + str(id) + ", but " + nouns +
+             " must be numbered from 0 or 1");
+    base = id;
+    return id;
+  }
+  const long long expected = base + index;
+  if (id == expected) return id;
+  if (id >= base && id < expected)
+    r.fail("duplicate " + std::string(noun) + " number " + str(id) + ": " + nouns +
+           " must be numbered consecutively, expected " + str(expected));
+  r.fail(std::string(noun) + " number " + str(id) + " is out of order: " + nouns +
+         " must be numbered consecutively, expected " + str(expected));
+}
+
+int read_marker(const TextReader& r, std::size_t i, const char* noun, long long id) {
+  const long long m = r.integer(i, [&] { return "the boundary marker of " + std::string(noun) + " " + str(id); });
+  if (m < INT_MIN || m > INT_MAX)
+    r.fail("boundary marker " + str(m) + " of " + noun + " " + str(id) + " does not fit in an int");
+  return static_cast<int>(m);
+}
+
+// Reads coordinates x, y from tokens 1 and 2 (the caller checked they exist).
+Point read_point(const TextReader& r, const char* noun, long long id) {
+  const double x = r.finite_number(1, [&] { return "the x coordinate of " + std::string(noun) + " " + str(id); });
+  const double y = r.finite_number(2, [&] { return "the y coordinate of " + std::string(noun) + " " + str(id); });
+  return {x, y};
+}
+
+void require_coordinates(const TextReader& r, const char* noun, long long id) {
+  if (r.size() < 3)
+    r.fail("expected 2 coordinates for " + std::string(noun) + " " + str(id) + ", found " +
+           str(static_cast<long long>(r.size()) - 1));
+}
+
+struct NodeHeader {
+  long long count = 0;
+  long long attributes = 0;
+  bool markers = false;
+  std::size_t line = 0;
+};
+
+// The `<#vertices> <dimension> <#attributes> <#markers>` line (current line).
+NodeHeader parse_node_header(const TextReader& r) {
+  NodeHeader h;
+  h.line = r.line();
+  h.count = read_count(r, 0, "vertex count");
+  const long long dim = read_optional_count(r, 1, "dimension", 2);
+  if (dim != 2) r.fail("dimension is " + str(dim) + ", but only 2 is supported");
+  h.attributes = read_optional_count(r, 2, "attribute count", 0);
+  h.markers = read_marker_flag(r, 3);
+  return h;
+}
+
+void read_vertices(TextReader& r, const NodeHeader& h, Pslg& g) {
+  const std::size_t na = static_cast<std::size_t>(h.attributes);
+  const std::size_t fields = 3 + na + (h.markers ? 1 : 0);
+  // Attribute counts too large for any line are caught here as well.
+  if (na > r.bytes_left()) r.fail("attribute count " + str(h.attributes) + " is larger than the file");
+  check_count_fits(r, h.count, fields, "vertices");
+  if (h.count >= static_cast<long long>(kInfinite)) r.fail("vertex count " + str(h.count) + " is too large");
+  const std::size_t n = static_cast<std::size_t>(h.count);
+  g.points.reserve(n);
+  g.num_point_attributes = na;
+  g.point_attributes.reserve(safe_capacity(r, n, na));
+  if (h.markers) g.point_markers.reserve(n);
+  long long base = 0;
+  for (long long i = 0; i < h.count; ++i) {
+    next_entry(r, i, h.count, h.line, "vertices");
+    const long long id = check_id(r, i, base, "vertex", "vertices");
+    require_coordinates(r, "vertex", id);
+    if (r.size() < 3 + na)
+      r.fail("expected " + plural(h.attributes, "attribute", "attributes") + " for vertex " + str(id) +
+             ", found " + str(static_cast<long long>(r.size()) - 3));
+    if (r.size() < fields)
+      r.fail("expected a boundary marker for vertex " + str(id) + " after its " +
+             plural(h.attributes, "attribute", "attributes") + ", found none");
+    g.points.push_back(read_point(r, "vertex", id));
+    for (std::size_t k = 0; k < na; ++k)
+      g.point_attributes.push_back(r.finite_number(
+          3 + k, [&] { return "attribute " + str(static_cast<long long>(k) + 1) + " of vertex " + str(id); }));
+    if (h.markers) g.point_markers.push_back(read_marker(r, 3 + na, "vertex", id));
+  }
+  g.first_index = static_cast<int>(base);
+}
+
+void reject_trailing_data(TextReader& r, const std::string& after) {
+  if (!r.has_more_data()) return;
+  r.next_line();
+  r.fail("unexpected data after " + after);
+}
+
+// Vertex reference in token i, re-based to 0 and checked against [0, n).
+VertexId read_vertex_ref(const TextReader& r, std::size_t i, const Pslg& g, const char* noun, long long id) {
+  const long long v = r.integer(i, [&] { return "an endpoint of " + std::string(noun) + " " + str(id); });
+  const long long n = static_cast<long long>(g.points.size());
+  const long long first = g.first_index;
+  if (v < first || v - first >= n) {
+    if (n == 0) r.fail(std::string(noun) + " " + str(id) + " refers to vertex " + str(v) + ", but there are no vertices");
+    r.fail(std::string(noun) + " " + str(id) + " refers to vertex " + str(v) + ", but vertices are numbered " +
+           str(first) + ".." + str(first + n - 1));
+  }
+  return static_cast<VertexId>(v - first);
+}
+
+std::string sibling_node_path(const std::string& poly_path) {
+  const std::size_t slash = poly_path.find_last_of('/');
+  const std::size_t dot = poly_path.find_last_of('.');
+  const bool has_ext = dot != std::string::npos && (slash == std::string::npos || dot > slash);
+  return (has_ext ? poly_path.substr(0, dot) : poly_path) + ".node";
+}
+
+double area_bound(double a) { return a > 0.0 ? a : -1.0; }
+
+// ---------------------------------------------------------------------------
+// Writing helpers
+
+// Buffered writer into an AtomicFile: numbers go straight into the buffer
+// with std::to_chars; the buffer is flushed whenever it passes kChunk.
+class OutBuffer {
+ public:
+  explicit OutBuffer(io::AtomicFile& file) : file_(file), buf_(kChunk + kSlack) {}
+
+  void put(char c) {
+    room();
+    buf_[n_++] = c;
+  }
+  void put(std::string_view s) {
+    for (std::size_t i = 0; i < s.size(); i += kSlack / 2) {
+      room();
+      const std::size_t k = std::min(s.size() - i, kSlack / 2);
+      s.copy(buf_.data() + n_, k, i);
+      n_ += k;
+    }
+  }
+  void put_int(long long v) {
+    room();
+    n_ = static_cast<std::size_t>(std::to_chars(buf_.data() + n_, buf_.data() + buf_.size(), v).ptr - buf_.data());
+  }
+  // Shortest representation that reads back to the same double.
+  void put_double(double v) {
+    room();
+    n_ = static_cast<std::size_t>(std::to_chars(buf_.data() + n_, buf_.data() + buf_.size(), v).ptr - buf_.data());
+  }
+  void field_int(long long v) {
+    put(' ');
+    put_int(v);
+  }
+  void field_double(double v) {
+    put(' ');
+    put_double(v);
+  }
+  void finish() {
+    put("# generated by deltamesh ");
+    put(kVersion);
+    put('\n');
+    flush();
+    file_.commit();
+  }
+
+ private:
+  static constexpr std::size_t kChunk = std::size_t{1} << 20;
+  static constexpr std::size_t kSlack = 256;  // > any single put
+  void room() {
+    if (n_ >= kChunk) flush();
+  }
+  void flush() {
+    file_.write(std::string_view(buf_.data(), n_));
+    n_ = 0;
+  }
+  io::AtomicFile& file_;
+  std::vector<char> buf_;
+  std::size_t n_ = 0;
+};
+
+// The twin of e if it lies in a live real triangle, else kNone (a boundary).
+HalfEdgeId real_twin(const Mesh& m, HalfEdgeId e) {
+  const HalfEdgeId f = m.twin(e);
+  return f == kNone || !m.is_real(tri_of(f)) ? kNone : f;
+}
+
+bool constrained(const Mesh& m, HalfEdgeId e) {
+  if (m.is_constrained(e)) return true;
+  const HalfEdgeId f = real_twin(m, e);
+  return f != kNone && m.is_constrained(f);
+}
+
+// Output numbering of live real triangles (dead and ghost slots skipped).
+struct TriNumbering {
+  std::vector<TriId> id;  // slot -> 0-based output index, kNone if skipped; empty: identity
+  std::size_t count = 0;
+  TriId operator()(TriId t) const { return id.empty() ? t : id[t]; }
+};
+
+TriNumbering number_triangles(const Mesh& m) {
+  TriNumbering num;
+  const std::size_t slots = m.num_triangle_slots();
+  for (TriId t = 0; t < slots; ++t) num.count += m.is_real(t);
+  if (num.count == slots) return num;
+  num.id.assign(slots, kNone);
+  TriId next = 0;
+  for (TriId t = 0; t < slots; ++t)
+    if (m.is_real(t)) num.id[t] = next++;
+  return num;
+}
+
+// 1 for vertices on an edge of the mesh boundary, 0 otherwise.
+std::vector<std::uint8_t> boundary_vertices(const Mesh& m) {
+  std::vector<std::uint8_t> on(m.num_vertices(), 0);
+  const std::size_t slots = m.num_triangle_slots();
+  for (TriId t = 0; t < slots; ++t) {
+    if (!m.is_real(t)) continue;
+    for (HalfEdgeId e = 3 * t; e < 3 * t + 3; ++e)
+      if (real_twin(m, e) == kNone) on[m.origin(e)] = on[m.dest(e)] = 1;
+  }
+  return on;
+}
+
+// Calls f(e) once per edge (half-edge e with no real twin, or e < twin).
+template <class F>
+void for_each_edge(const Mesh& m, F&& f) {
+  const std::size_t slots = m.num_triangle_slots();
+  for (TriId t = 0; t < slots; ++t) {
+    if (!m.is_real(t)) continue;
+    for (HalfEdgeId e = 3 * t; e < 3 * t + 3; ++e) {
+      const HalfEdgeId tw = real_twin(m, e);
+      if (tw == kNone || e < tw) f(e, tw == kNone);
+    }
+  }
+}
+
+}  // namespace
+
+// ---------------------------------------------------------------------------
+// Readers
+
+Pslg read_node(const std::string& path) {
+  TextReader r = TextReader::open(path);
+  if (!r.next_line())
+    r.fail_at(r.last_line(), "expected the header line '<#vertices> 2 <#attributes> <#boundary markers>', "
+                             "but the file holds no data");
+  const NodeHeader h = parse_node_header(r);
+  Pslg g;
+  read_vertices(r, h, g);
+  reject_trailing_data(r, "the " + plural(h.count, "vertex", "vertices") + " announced on line " +
+                              std::to_string(h.line));
+  return g;
+}
+
+Pslg read_poly(const std::string& path) {
+  TextReader r = TextReader::open(path);
+  if (!r.next_line())
+    r.fail_at(r.last_line(), "expected the header line '<#vertices> 2 <#attributes> <#boundary markers>', "
+                             "but the file holds no data");
+  const NodeHeader h = parse_node_header(r);
+  Pslg g;
+  if (h.count > 0) {
+    read_vertices(r, h, g);
+  } else {
+    const std::string node = sibling_node_path(path);
+    try {
+      g = read_node(node);
+    } catch (const IoError& e) {
+      r.fail_at(h.line, "the .poly file lists no vertices, so they must come from '" + node +
+                            "', which cannot be read (" + e.what() + ")");
+    }
+  }
+
+  // Segments.
+  if (!r.next_line())
+    r.fail_at(r.last_line(), "the file ends before the segment count line '<#segments> <#boundary markers>'");
+  const std::size_t seg_line = r.line();
+  const long long ns = read_count(r, 0, "segment count");
+  const bool seg_markers = read_marker_flag(r, 1);
+  check_count_fits(r, ns, 3 + (seg_markers ? 1 : 0), "segments");
+  g.segments.reserve(static_cast<std::size_t>(ns));
+  long long base = 0;
+  for (long long i = 0; i < ns; ++i) {
+    next_entry(r, i, ns, seg_line, "segments");
+    const long long id = check_id(r, i, base, "segment", "segments");
+    if (r.size() < 3)
+      r.fail("expected 2 endpoints for segment " + str(id) + ", found " + str(static_cast<long long>(r.size()) - 1));
+    if (seg_markers && r.size() < 4) r.fail("expected a boundary marker for segment " + str(id) + ", found none");
+    Segment s;
+    s.a = read_vertex_ref(r, 1, g, "segment", id);
+    s.b = read_vertex_ref(r, 2, g, "segment", id);
+    if (s.a == s.b)
+      r.fail("segment " + str(id) + " has vertex " + std::string(r.token(1)) + " at both ends");
+    if (seg_markers) s.marker = read_marker(r, 3, "segment", id);
+    g.segments.push_back(s);
+  }
+
+  // Holes.
+  if (!r.next_line()) r.fail_at(r.last_line(), "the file ends before the hole count line '<#holes>'");
+  const std::size_t hole_line = r.line();
+  const long long nh = read_count(r, 0, "hole count");
+  check_count_fits(r, nh, 3, "holes");
+  g.holes.reserve(static_cast<std::size_t>(nh));
+  base = 0;
+  for (long long i = 0; i < nh; ++i) {
+    next_entry(r, i, nh, hole_line, "holes");
+    const long long id = check_id(r, i, base, "hole", "holes");
+    require_coordinates(r, "hole", id);
+    g.holes.push_back(read_point(r, "hole", id));
+  }
+
+  // Optional regional attributes and area constraints.
+  if (r.next_line()) {
+    const std::size_t region_line = r.line();
+    const long long nr = read_count(r, 0, "region count");
+    check_count_fits(r, nr, 4, "regions");
+    g.regions.reserve(static_cast<std::size_t>(nr));
+    base = 0;
+    for (long long i = 0; i < nr; ++i) {
+      next_entry(r, i, nr, region_line, "regions");
+      const long long id = check_id(r, i, base, "region", "regions");
+      require_coordinates(r, "region", id);
+      if (r.size() < 4) r.fail("expected a regional attribute for region " + str(id) + ", found none");
+      RegionSeed seed;
+      seed.p = read_point(r, "region", id);
+      seed.attribute = r.finite_number(3, [&] { return "the attribute of region " + str(id); });
+      if (r.size() >= 5)
+        seed.max_area = area_bound(r.finite_number(4, [&] { return "the maximum area of region " + str(id); }));
+      g.regions.push_back(seed);
+    }
+    reject_trailing_data(r, "the " + plural(nr, "region", "regions") + " announced on line " +
+                                std::to_string(region_line));
+  }
+  return g;
+}
+
+EleData read_ele(const std::string& path, int first_index) {
+  TextReader r = TextReader::open(path);
+  if (!r.next_line())
+    r.fail_at(r.last_line(), "expected the header line '<#triangles> <nodes per triangle> <#attributes>', "
+                             "but the file holds no data");
+  const std::size_t header_line = r.line();
+  const long long nt = read_count(r, 0, "triangle count");
+  const long long nodes = read_optional_count(r, 1, "nodes per triangle", 3);
+  if (nodes != 3 && nodes != 6) r.fail("nodes per triangle is " + str(nodes) + ", but only 3 or 6 are supported");
+  const long long nattr = read_optional_count(r, 2, "attribute count", 0);
+  if (static_cast<unsigned long long>(nattr) > r.bytes_left())
+    r.fail("attribute count " + str(nattr) + " is larger than the file");
+  const std::size_t na = static_cast<std::size_t>(nattr);
+  const std::size_t fields = 1 + static_cast<std::size_t>(nodes) + na;
+  check_count_fits(r, nt, fields, "triangles");
+  if (nt >= static_cast<long long>(kNone / 3)) r.fail("triangle count " + str(nt) + " is too large");
+
+  EleData d;
+  d.num_attributes = na;
+  d.triangles.reserve(3 * static_cast<std::size_t>(nt));
+  d.attributes.reserve(safe_capacity(r, static_cast<std::size_t>(nt), na));
+  long long base = 0;
+  for (long long i = 0; i < nt; ++i) {
+    next_entry(r, i, nt, header_line, "triangles");
+    const long long id = check_id(r, i, base, "triangle", "triangles");
+    if (r.size() < 1 + static_cast<std::size_t>(nodes))
+      r.fail("expected " + str(nodes) + " vertices for triangle " + str(id) + ", found " +
+             str(static_cast<long long>(r.size()) - 1));
+    if (r.size() < fields)
+      r.fail("expected " + plural(nattr, "attribute", "attributes") + " for triangle " + str(id) + ", found " +
+             str(static_cast<long long>(r.size()) - 1 - nodes));
+    std::array<VertexId, 3> v{};
+    for (std::size_t k = 0; k < static_cast<std::size_t>(nodes); ++k) {
+      const long long x = r.integer(1 + k, [&] { return "a vertex of triangle " + str(id); });
+      if (x < first_index)
+        r.fail("triangle " + str(id) + " refers to vertex " + str(x) + ", but vertices are numbered from " +
+               str(first_index));
+      if (x - first_index >= static_cast<long long>(kInfinite))
+        r.fail("triangle " + str(id) + " refers to vertex " + str(x) + ", which is too large");
+      if (k < 3) v[k] = static_cast<VertexId>(x - first_index);
+    }
+    if (v[0] == v[1] || v[1] == v[2] || v[0] == v[2])
+      r.fail("triangle " + str(id) + " uses vertex " + std::string(r.token(v[0] == v[1] || v[0] == v[2] ? 1 : 2)) +
+             " twice");
+    d.triangles.insert(d.triangles.end(), v.begin(), v.end());
+    for (std::size_t k = 0; k < na; ++k)
+      d.attributes.push_back(r.finite_number(1 + static_cast<std::size_t>(nodes) + k, [&] {
+        return "attribute " + str(static_cast<long long>(k) + 1) + " of triangle " + str(id);
+      }));
+  }
+  reject_trailing_data(r, "the " + plural(nt, "triangle", "triangles") + " announced on line " +
+                              std::to_string(header_line));
+  return d;
+}
+
+std::vector<double> read_area(const std::string& path) {
+  TextReader r = TextReader::open(path);
+  if (!r.next_line())
+    r.fail_at(r.last_line(), "expected the header line '<#triangles>', but the file holds no data");
+  const std::size_t header_line = r.line();
+  const long long nt = read_count(r, 0, "triangle count");
+  check_count_fits(r, nt, 2, "triangles");
+  std::vector<double> areas;
+  areas.reserve(static_cast<std::size_t>(nt));
+  long long base = 0;
+  for (long long i = 0; i < nt; ++i) {
+    next_entry(r, i, nt, header_line, "triangles");
+    const long long id = check_id(r, i, base, "triangle", "triangles");
+    if (r.size() < 2) r.fail("expected a maximum area for triangle " + str(id) + ", found none");
+    areas.push_back(area_bound(r.finite_number(1, [&] { return "the maximum area of triangle " + str(id); })));
+  }
+  reject_trailing_data(r, "the " + plural(nt, "triangle", "triangles") + " announced on line " +
+                              std::to_string(header_line));
+  return areas;
+}
+
+// ---------------------------------------------------------------------------
+// Writers
+
+void write_node(const Mesh& mesh, const std::string& path, const TriangleWriteOptions& opt) {
+  io::AtomicFile file(path);
+  OutBuffer out(file);
+  const std::size_t n = mesh.num_vertices();
+  const std::size_t na = opt.write_attributes ? mesh.num_vertex_attributes() : 0;
+  const std::vector<double>& attrs = mesh.vertex_attributes();
+  const std::vector<int>& markers = mesh.vertex_markers();
+  std::vector<std::uint8_t> on_boundary;
+  if (opt.write_markers && markers.size() < n) on_boundary = boundary_vertices(mesh);
+
+  out.put_int(static_cast<long long>(n));
+  out.put(" 2");
+  out.field_int(static_cast<long long>(na));
+  out.put(opt.write_markers ? " 1\n" : " 0\n");
+  for (std::size_t v = 0; v < n; ++v) {
+    out.put_int(static_cast<long long>(v) + opt.first_index);
+    const Point& p = mesh.point(static_cast<VertexId>(v));
+    out.field_double(p.x);
+    out.field_double(p.y);
+    for (std::size_t k = 0; k < na; ++k) {
+      const std::size_t i = v * na + k;
+      out.field_double(i < attrs.size() ? attrs[i] : 0.0);
+    }
+    if (opt.write_markers) out.field_int(v < markers.size() ? markers[v] : on_boundary[v]);
+    out.put('\n');
+  }
+  out.finish();
+}
+
+void write_ele(const Mesh& mesh, const std::string& path, const TriangleWriteOptions& opt) {
+  io::AtomicFile file(path);
+  OutBuffer out(file);
+  const TriNumbering num = number_triangles(mesh);
+  const std::size_t na = opt.write_attributes ? mesh.num_triangle_attributes() : 0;
+  const std::vector<double>& attrs = mesh.triangle_attributes();
+
+  out.put_int(static_cast<long long>(num.count));
+  out.put(" 3");
+  out.field_int(static_cast<long long>(na));
+  out.put('\n');
+  const std::size_t slots = mesh.num_triangle_slots();
+  for (TriId t = 0; t < slots; ++t) {
+    if (!mesh.is_real(t)) continue;
+    out.put_int(static_cast<long long>(num(t)) + opt.first_index);
+    for (const VertexId v : mesh.triangle(t)) out.field_int(static_cast<long long>(v) + opt.first_index);
+    for (std::size_t k = 0; k < na; ++k) {
+      const std::size_t i = std::size_t{t} * na + k;
+      out.field_double(i < attrs.size() ? attrs[i] : 0.0);
+    }
+    out.put('\n');
+  }
+  out.finish();
+}
+
+void write_edge(const Mesh& mesh, const std::string& path, const TriangleWriteOptions& opt) {
+  io::AtomicFile file(path);
+  OutBuffer out(file);
+  std::size_t count = 0;
+  for_each_edge(mesh, [&](HalfEdgeId, bool) { ++count; });
+  out.put_int(static_cast<long long>(count));
+  out.put(opt.write_markers ? " 1\n" : " 0\n");
+  long long id = opt.first_index;
+  for_each_edge(mesh, [&](HalfEdgeId e, bool boundary) {
+    out.put_int(id++);
+    out.field_int(static_cast<long long>(mesh.origin(e)) + opt.first_index);
+    out.field_int(static_cast<long long>(mesh.dest(e)) + opt.first_index);
+    if (opt.write_markers) out.field_int(boundary || constrained(mesh, e) ? 1 : 0);
+    out.put('\n');
+  });
+  out.finish();
+}
+
+void write_neigh(const Mesh& mesh, const std::string& path, const TriangleWriteOptions& opt) {
+  io::AtomicFile file(path);
+  OutBuffer out(file);
+  const TriNumbering num = number_triangles(mesh);
+  out.put_int(static_cast<long long>(num.count));
+  out.put(" 3\n");
+  const std::size_t slots = mesh.num_triangle_slots();
+  for (TriId t = 0; t < slots; ++t) {
+    if (!mesh.is_real(t)) continue;
+    out.put_int(static_cast<long long>(num(t)) + opt.first_index);
+    for (HalfEdgeId i = 0; i < 3; ++i) {
+      // Neighbour i is opposite vertex i, across half-edge 3t + (i+1)%3.
+      const HalfEdgeId tw = real_twin(mesh, 3 * t + (i + 1) % 3);
+      out.field_int(tw == kNone ? -1 : static_cast<long long>(num(tri_of(tw))) + opt.first_index);
+    }
+    out.put('\n');
+  }
+  out.finish();
+}
+
+void write_poly(const Mesh& mesh, const std::string& path, const TriangleWriteOptions& opt) {
+  bool any_constrained = false;
+  if (mesh.has_edge_flags())
+    for_each_edge(mesh, [&](HalfEdgeId e, bool) { any_constrained = any_constrained || constrained(mesh, e); });
+  const auto is_segment = [&](HalfEdgeId e, bool boundary) {
+    return any_constrained ? constrained(mesh, e) : boundary;
+  };
+
+  io::AtomicFile file(path);
+  OutBuffer out(file);
+  std::size_t count = 0;
+  for_each_edge(mesh, [&](HalfEdgeId e, bool boundary) { count += is_segment(e, boundary); });
+  // No vertices here: they are in the .node file of the same name.
+  out.put(opt.write_markers ? "0 2 0 1\n" : "0 2 0 0\n");
+  out.put_int(static_cast<long long>(count));
+  out.put(opt.write_markers ? " 1\n" : " 0\n");
+  long long id = opt.first_index;
+  for_each_edge(mesh, [&](HalfEdgeId e, bool boundary) {
+    if (!is_segment(e, boundary)) return;
+    out.put_int(id++);
+    out.field_int(static_cast<long long>(mesh.origin(e)) + opt.first_index);
+    out.field_int(static_cast<long long>(mesh.dest(e)) + opt.first_index);
+    if (opt.write_markers) out.put(" 1");
+    out.put('\n');
+  });
+  out.put("0\n");  // no holes
+  out.finish();
+}
+
+}  // namespace deltamesh
