@@ -560,6 +560,39 @@ TEST_F(TriangleIo, EdgeFileEveryEdgeOnceWithMarkers) {
   EXPECT_EQ(boundary, 10);
 }
 
+TEST_F(TriangleIo, EdgeAndPolyWriteSegmentMarkers) {
+  Mesh m = grid_mesh(2, 2);  // vertex (i, j) is 3j + i
+  const auto edge = [&](VertexId a, VertexId b) {
+    const HalfEdgeId e = m.find_edge(a, b);
+    return e != kNone ? e : m.find_edge(b, a);
+  };
+  m.constrain_edge(edge(0, 4), 7);  // interior segment with a marker
+  m.constrain_edge(edge(4, 8), 0);  // interior segment without one
+  m.constrain_edge(edge(0, 1), 5);  // boundary segment with a marker
+  const std::string p = path("m.edge");
+  write_edge(m, p);
+  std::map<std::pair<int, int>, std::string> marker;
+  const auto lines = data_lines(p);
+  for (std::size_t i = 1; i < lines.size(); ++i) {
+    const int a = std::stoi(lines[i][1]), b = std::stoi(lines[i][2]);
+    marker[{std::min(a, b), std::max(a, b)}] = lines[i][3];
+  }
+  EXPECT_EQ(marker.size(), 16u);
+  EXPECT_EQ((marker[{0, 4}]), "7");
+  EXPECT_EQ((marker[{4, 8}]), "1");
+  EXPECT_EQ((marker[{0, 1}]), "5");
+  EXPECT_EQ((marker[{1, 2}]), "1");  // boundary, not a segment
+  EXPECT_EQ((marker[{1, 4}]), "0");  // interior, not a segment
+
+  write_node(m, path("m.node"));
+  write_poly(m, path("m.poly"));
+  const Pslg g = read_poly(path("m.poly"));
+  std::map<std::pair<VertexId, VertexId>, int> seg;
+  for (const Segment& s : g.segments) seg[{std::min(s.a, s.b), std::max(s.a, s.b)}] = s.marker;
+  const std::map<std::pair<VertexId, VertexId>, int> expected{{{0, 4}, 7}, {{4, 8}, 1}, {{0, 1}, 5}};
+  EXPECT_EQ(seg, expected);
+}
+
 TEST_F(TriangleIo, NeighFileOppositeVertices) {
   const Mesh m = grid_mesh(3, 3);
   const std::string p = path("m.neigh");

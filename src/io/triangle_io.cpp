@@ -276,6 +276,19 @@ bool constrained(const Mesh& m, HalfEdgeId e) {
   return f != kNone && m.is_constrained(f);
 }
 
+// The boundary marker written for an edge: the marker of the segment it
+// belongs to when that is nonzero; otherwise 1 on the mesh boundary or on a
+// constrained edge, 0 elsewhere.
+int edge_output_marker(const Mesh& m, HalfEdgeId e, bool boundary) {
+  int marker = m.edge_marker(e);
+  if (marker == 0) {
+    const HalfEdgeId tw = real_twin(m, e);
+    if (tw != kNone) marker = m.edge_marker(tw);
+  }
+  if (marker != 0) return marker;
+  return boundary || constrained(m, e) ? 1 : 0;
+}
+
 // Output numbering of live real triangles (dead and ghost slots skipped).
 struct TriNumbering {
   std::vector<TriId> id;  // slot -> 0-based output index, kNone if skipped; empty: identity
@@ -565,7 +578,7 @@ void write_edge(const Mesh& mesh, const std::string& path, const TriangleWriteOp
     out.put_int(id++);
     out.field_int(static_cast<long long>(mesh.origin(e)) + opt.first_index);
     out.field_int(static_cast<long long>(mesh.dest(e)) + opt.first_index);
-    if (opt.write_markers) out.field_int(boundary || constrained(mesh, e) ? 1 : 0);
+    if (opt.write_markers) out.field_int(edge_output_marker(mesh, e, boundary));
     out.put('\n');
   });
   out.finish();
@@ -613,7 +626,7 @@ void write_poly(const Mesh& mesh, const std::string& path, const TriangleWriteOp
     out.put_int(id++);
     out.field_int(static_cast<long long>(mesh.origin(e)) + opt.first_index);
     out.field_int(static_cast<long long>(mesh.dest(e)) + opt.first_index);
-    if (opt.write_markers) out.put(" 1");
+    if (opt.write_markers) out.field_int(edge_output_marker(mesh, e, boundary));
     out.put('\n');
   });
   out.put("0\n");  // no holes
