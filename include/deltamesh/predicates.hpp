@@ -65,4 +65,27 @@ extern const double kMaxCoordinate;
 // or outside the supported magnitude range.
 void check_coordinates(std::span<const Point> points);
 
+// --- Range of the exact predicates and the lifted (weighted) predicate. ---
+
+// Smallest nonzero coordinate magnitude the predicates accept (2^-200); with
+// kMaxCoordinate (2^200) it bounds every intermediate away from overflow and
+// from rounding in the subnormal range (see predicates.cpp for why).
+extern const double kMinCoordinate;
+// Weights of orient3d_lifted scale like squared coordinates: finite, and 0 or
+// kMinWeight (2^-400) <= |w| <= kMaxWeight (2^400).
+extern const double kMaxWeight;
+extern const double kMinWeight;
+// Throws InputError naming the index of the first weight that is NaN,
+// infinite or outside [kMinWeight, kMaxWeight] in magnitude (0 is accepted).
+void check_weights(std::span<const double> weights);
+
+// Sign of det [[ax ay ax^2+ay^2-wa 1] [bx by bx^2+by^2-wb 1]
+//              [cx cy cx^2+cy^2-wc 1] [dx dy dx^2+dy^2-wd 1]]:
+// the weighted (power) incircle test. > 0 when d lies inside the power circle
+// of the counter-clockwise a, b, c (its lifted point below their plane), < 0
+// outside, 0 on it; with all weights 0 it has the sign of incircle(a, b, c, d).
+// Exact for points passing check_coordinates and weights passing check_weights.
+double orient3d_lifted(const Point& a, const Point& b, const Point& c, const Point& d, double wa, double wb,
+                       double wc, double wd);
+
 }  // namespace deltamesh
