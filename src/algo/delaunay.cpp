@@ -117,11 +117,22 @@ class BulkBuilder {
     return t;
   }
 
+  // Triangle t = (a, b, c) becomes (a, b, v) + new (b, c, v) + new (c, a, v).
   void split(TriId t, VertexId v) {
-    const HalfEdgeId r = mesh_.split_triangle(t, v);
-    push(r - 2);
-    push(tw_[r - 1] - 2);
-    push(tw_[r] - 1);
+    const HalfEdgeId e0 = 3 * t, e1 = e0 + 1, e2 = e0 + 2;
+    const VertexId a = v_[e0], b = v_[e1], c = v_[e2];
+    const HalfEdgeId tw_bc = tw_[e1], tw_ca = tw_[e2];
+    const HalfEdgeId g0 = static_cast<HalfEdgeId>(v_.size()), h0 = g0 + 3;
+    v_.insert(v_.end(), {b, c, v, c, a, v});
+    tw_.insert(tw_.end(), {tw_bc, h0 + 2, e1, tw_ca, e2, g0 + 1});
+    tw_[tw_bc] = g0;
+    tw_[tw_ca] = h0;
+    v_[e2] = v;
+    tw_[e1] = g0 + 2;
+    tw_[e2] = h0 + 1;
+    push(e0);
+    push(g0);
+    push(h0);
   }
 
   void flip(HalfEdgeId e, HalfEdgeId f) {
@@ -186,16 +197,11 @@ Mesh delaunay(std::span<const Point> points, const DelaunayOptions& options, Del
   const std::size_t n = points.size();
   if (n >= kNone - 2) throw InputError("too many points: at most 4294967292 are supported");
   auto t0 = Clock::now();
-  std::vector<VertexId> order = detail::hilbert_order(points);
-
   // Build on a copy in insertion order, so the walk touches nearby memory.
   Mesh mesh;
-  {
-    std::vector<Point>& pts = mesh.points_mut();
-    pts.resize(n);
-    for (std::size_t k = 0; k < n; ++k) pts[k] = points[order[k]];
-    mesh.vert_edge_mut().assign(n, kNone);
-  }
+  std::vector<VertexId> order = detail::hilbert_order(points, &mesh.points_mut());
+
+  mesh.vert_edge_mut().assign(n, kNone);
   if (stats) stats->sort_seconds = seconds_since(t0);
   t0 = Clock::now();
 

@@ -8,11 +8,16 @@
 
 namespace deltamesh::detail {
 
-// Index of (x, y) on a Hilbert curve of order 16 over [0, 2^16)^2.
-std::uint32_t hilbert_index(std::uint32_t x, std::uint32_t y);
+// Index of (x, y) on a Hilbert curve of `levels` levels (<= 16) over
+// [0, 2^levels)^2.
+std::uint32_t hilbert_index(std::uint32_t x, std::uint32_t y, int levels = 16);
 
-// Permutation of `points` along a Hilbert curve over their bounding box:
-// order[k] is the input index of the k-th point to insert. Ties keep input order.
-std::vector<VertexId> hilbert_order(std::span<const Point> points);
+// Insertion order for `points`: a biased randomized insertion order (rounds of
+// growing size, chosen by a fixed hash of the index, so deterministic) with
+// each round along a Hilbert curve over the bounding box. order[k] is the
+// input index of the k-th point to insert. Points in the same round and curve
+// cell (2^22 cells) keep input order. When `sorted` is given it receives the
+// points in that order.
+std::vector<VertexId> hilbert_order(std::span<const Point> points, std::vector<Point>* sorted = nullptr);
 
 }  // namespace deltamesh::detail
