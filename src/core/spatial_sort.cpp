@@ -78,8 +78,7 @@ std::vector<VertexId> hilbert_order(std::span<const Point> points, std::vector<P
   // points; within a round, Hilbert order. Random rounds keep the number of
   // flips per insertion near its randomized expectation, Hilbert order keeps
   // the walks short. Sort key: round (3 bits) above the top 22 bits of the
-  // curve index; two counting-sort passes of 13 bits. The records carry the
-  // coordinates, so no pass gathers from random places.
+  // curve index; two counting-sort passes of 13 bits.
   constexpr int kBits = 13, kBuckets = 1 << kBits;
   constexpr std::uint32_t kLastRound = 7;
   auto round_of = [](std::size_t i) {
@@ -94,18 +93,13 @@ std::vector<VertexId> hilbert_order(std::span<const Point> points, std::vector<P
     }
     return kLastRound - level;
   };
-  struct Record {
-    std::uint32_t key;
-    VertexId index;
-    Point p;
-  };
-  std::vector<std::uint32_t> keys(n);
+  std::vector<std::uint64_t> keys(n), tmp(n);
   std::vector<std::size_t> low(kBuckets + 1, 0), high(kBuckets + 1, 0);
   for (std::size_t i = 0; i < n; ++i) {
     const auto qx = static_cast<std::uint32_t>(std::clamp((points[i].x - minx) * scale, 0.0, kCells));
     const auto qy = static_cast<std::uint32_t>(std::clamp((points[i].y - miny) * scale, 0.0, kCells));
     const std::uint32_t k = (round_of(i) << (2 * kLevels)) | hilbert_index(qx, qy, kLevels);
-    keys[i] = k;
+    keys[i] = (std::uint64_t{k} << 32) | i;
     ++low[(k & (kBuckets - 1)) + 1];
     ++high[(k >> kBits) + 1];
   }
@@ -113,19 +107,13 @@ std::vector<VertexId> hilbert_order(std::span<const Point> points, std::vector<P
     low[b + 1] += low[b];
     high[b + 1] += high[b];
   }
-  std::vector<Record> pass1(n);
-  for (std::size_t i = 0; i < n; ++i)
-    pass1[low[keys[i] & (kBuckets - 1)]++] = Record{keys[i], static_cast<VertexId>(i), points[i]};
-  keys.clear();
-  keys.shrink_to_fit();
-  std::vector<Record> pass2(n);
-  for (const Record& r : pass1) pass2[high[r.key >> kBits]++] = r;
-  pass1.clear();
-  pass1.shrink_to_fit();
-  for (std::size_t k = 0; k < n; ++k) {
-    order[k] = pass2[k].index;
-    if (sorted) (*sorted)[k] = pass2[k].p;
-  }
+  for (const std::uint64_t k : keys) tmp[low[(k >> 32) & (kBuckets - 1)]++] = k;
+  for (const std::uint64_t k : tmp) keys[high[k >> (32 + kBits)]++] = k;
+  tmp.clear();
+  tmp.shrink_to_fit();
+  for (std::size_t k = 0; k < n; ++k) order[k] = static_cast<VertexId>(keys[k]);
+  if (sorted)
+    for (std::size_t k = 0; k < n; ++k) (*sorted)[k] = points[order[k]];
   return order;
 }
 
