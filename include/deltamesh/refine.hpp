@@ -1,0 +1,154 @@
+// Delaunay refinement (seed §3): Ruppert/Chew refinement of a carved
+// constrained Delaunay triangulation into a quality mesh, with off-centre
+// Steiner points, concentric-shell segment splitting and the small-angle
+// rules of §3.6 so that it terminates on every input.
+//
+//   deltamesh::Mesh mesh = deltamesh::triangulate(pslg);   // carved CDT
+//   deltamesh::RefineStats st = deltamesh::refine(mesh, {.min_angle_deg = 30, .max_area = 0.01});
+//   if (!st.complete) ...                                   // a budget stopped it; mesh still valid
+#pragma once
+#include <cstddef>
+#include <functional>
+#include <limits>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "deltamesh/mesh.hpp"
+
+namespace deltamesh {
+
+// Where a skinny (or too large) triangle is split.
+enum class SteinerRule {
+  // Üngör's off-centre: on the bisector of the shortest edge, no farther from
+  // it than the point that makes a triangle of exactly the angle bound with
+  // it; the circumcentre when that is nearer. Fewer triangles (default).
+  Offcenter,
+  // The circumcentre, exactly the seed's Figure 18 (Ruppert / Chew).
+  Circumcenter,
+};
+
+// When a vertex encroaches upon a subsegment.
+enum class EncroachmentRule {
+  // Inside the diametral circle (the seed's R1): the segment subtends an
+  // angle > 90° at the vertex. Decided with an exact sign.
+  DiametralCircle,
+  // Inside the diametral lens (Shewchuk): the segment subtends an angle
+  // > max(90°, 180° - 2·min_angle) at the vertex. Fewer segment splits.
+  // Steiner points beyond a segment still split it.
+  DiametralLens,
+};
+
+// Which segments may receive Steiner points (Triangle's -Y / -YY).
+enum class SegmentSplitting {
+  All,           // default
+  InteriorOnly,  // -Y: none on boundary segments (edges with one triangle)
+  None,          // -YY: none on any segment
+};
+
+// No Steiner budget.
+inline constexpr std::size_t kUnlimited = std::numeric_limits<std::size_t>::max();
+// The default budget: unlimited while the angle bound is one refinement is
+// known to reach in practice (<= kAutomaticBudgetAngle), otherwise
+// 10^7 + 100 × (vertices before refinement) Steiner points.
+inline constexpr std::size_t kAutomaticBudget = kUnlimited - 1;
+inline constexpr double kAutomaticBudgetAngle = 34.0;
+
+struct RefineOptions {
+  // Triangles with an angle below this are split (Triangle's -q; 0 turns the
+  // angle criterion off). Termination is proven up to ~20.7° for the seed's
+  // algorithm; up to ~34° it terminates in practice (off-centres reach higher
+  // bounds); beyond, budgets stop it. At most 60°.
+  double min_angle_deg = 20.0;
+  // Global maximum triangle area (-a0.01); <= 0: none.
+  double max_area = -1.0;
+  // Honour the mesh's per-triangle area bounds (Mesh::triangle_area_bound:
+  // regional -a, or an .area file with -r).
+  bool use_triangle_area_bounds = true;
+  // Sizing callbacks, evaluated at a triangle's centroid; a value <= 0 means
+  // no bound there. They are called from the refining thread only, and the
+  // library keeps no global state, so concurrent refine() calls with
+  // different callbacks are safe (the callback itself must be safe to call
+  // from the thread that calls refine()). max_area_at bounds the area,
+  // max_edge_at the longest edge.
+  std::function<double(double x, double y)> max_area_at;
+  std::function<double(double x, double y)> max_edge_at;
+
+  SteinerRule steiner = SteinerRule::Offcenter;
+  EncroachmentRule encroachment = EncroachmentRule::DiametralCircle;
+  SegmentSplitting segment_splitting = SegmentSplitting::All;
+  // -D: every interior edge, segments included, ends locally Delaunay, so the
+  // mesh is Delaunay within each connected region (diametral circles are
+  // used whatever `encroachment` says).
+  bool conforming_delaunay = false;
+  // §3.6: split segments on concentric shells around input vertices and
+  // leave alone skinny triangles that sit in small input angles (< 60°),
+  // which is what makes refinement terminate on every input. Turning it off
+  // runs Figure 18 literally (midpoint splits, every skinny triangle split);
+  // then only the budgets guarantee termination.
+  bool small_angle_protection = true;
+
+  // Maximum number of Steiner points (-S); kUnlimited, or kAutomaticBudget.
+  std::size_t max_steiner = kAutomaticBudget;
+  // Wall-clock limit in seconds (<= 0: none).
+  double time_limit_seconds = 0.0;
+};
+
+struct RefineStats {
+  // False when a budget or the time limit stopped refinement; the mesh is
+  // valid either way.
+  bool complete = true;
+  bool budget_exhausted = false;
+  bool time_exhausted = false;
+
+  std::size_t input_vertices = 0;    // vertices before refinement
+  std::size_t steiner_points = 0;    // vertices added
+  std::size_t segment_splits = 0;    // ... on segments (R1)
+  std::size_t interior_points = 0;   // ... inside the domain (R2 and area)
+  std::size_t offcenters = 0;        // interior points at an off-centre rather than a circumcentre
+  std::size_t rejected_points = 0;   // R2 points not inserted because they encroached segments
+  std::size_t small_angle_skips = 0; // splits refused by the §3.6 rules (events, not triangles)
+
+  // Triangles still below the angle bound when refinement ended, and why.
+  std::size_t below_bound = 0;
+  std::size_t below_small_input_angle = 0;  // in an input angle < 60° (§3.6): expected
+  std::size_t below_segment_protected = 0;  // needed a split that -Y/-YY forbids
+  std::size_t below_budget = 0;             // left when a budget/time limit stopped refinement
+  std::size_t below_precision = 0;          // at the resolution of doubles: no distinct point fits
+  // Triangles still above their area / edge-length bound.
+  std::size_t too_large = 0;
+
+  double min_angle_deg = 0.0;  // the bound refined for
+  double seconds = 0.0;
+  std::size_t peak_queue = 0;  // largest number of queued bad triangles
+
+  std::string summary() const;
+};
+
+// Refines a carved, compacted constrained Delaunay triangulation in place:
+// constrained edges are the segments, boundary half-edges have twin kNone
+// (boundary edges that are not constrained are treated as segments and get
+// the kConstrained flag). A mesh with ghost triangles is compacted first.
+// Vertices keep their ids; Steiner points are appended. Segment splits keep
+// the segment's marker on both halves. Returns what happened; never throws
+// for a budget or an unreachable bound.
+RefineStats refine(Mesh& mesh, const RefineOptions& options = {});
+
+std::string_view to_string(SteinerRule r);
+std::optional<SteinerRule> parse_steiner_rule(std::string_view name);          // "offcenter", "circumcenter"
+std::string_view to_string(EncroachmentRule r);
+std::optional<EncroachmentRule> parse_encroachment_rule(std::string_view name);  // "circle", "lens"
+
+// Second-order (six-node) triangles, Triangle's -o2: one node at the midpoint
+// of every edge. Node k of triangle t (k = 0, 1, 2) sits on the edge opposite
+// triangle vertex k, as in Triangle's .ele files (nodes 4, 5, 6). Node ids
+// continue the mesh's vertex numbering: points[i] is node mesh.num_vertices() + i.
+struct SecondOrderNodes {
+  std::vector<Point> points;
+  std::vector<int> markers;          // 1 on a boundary or segment edge's marker when nonzero, else 0
+  std::vector<VertexId> tri_nodes;   // 3 per triangle slot
+};
+SecondOrderNodes second_order_nodes(const Mesh& mesh);
+
+}  // namespace deltamesh

@@ -1,0 +1,177 @@
+// Mesh quality report: see include/deltamesh/quality.hpp.
+#include "deltamesh/quality.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <numbers>
+#include <sstream>
+#include <vector>
+
+namespace deltamesh {
+
+namespace {
+
+constexpr double kDeg = 180.0 / std::numbers::pi;
+
+// Angle at a of triangle abc, in degrees (atan2 of cross and dot: accurate
+// for tiny and near-180° angles alike).
+double angle_at(const Point& a, const Point& b, const Point& c) {
+  const double ux = b.x - a.x, uy = b.y - a.y, wx = c.x - a.x, wy = c.y - a.y;
+  return std::atan2(std::fabs(ux * wy - uy * wx), ux * wx + uy * wy) * kDeg;
+}
+
+std::string fmt(double v) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.6g", v);
+  return buf;
+}
+
+}  // namespace
+
+QualityReport quality_report(const Mesh& mesh, const QualityOptions& opt, const RefineStats* rs) {
+  QualityReport r;
+  r.angle_bound_deg = opt.min_angle_deg;
+  if (rs) r.refine = *rs;
+  const std::size_t nv = mesh.num_vertices();
+  std::vector<char> used(nv, 0);
+  bool first = true;
+  for (TriId t = 0; t < mesh.num_triangle_slots(); ++t) {
+    if (!mesh.is_real(t)) continue;
+    const auto v = mesh.triangle(t);
+    const Point& a = mesh.point(v[0]);
+    const Point& b = mesh.point(v[1]);
+    const Point& c = mesh.point(v[2]);
+    for (VertexId x : v) used[x] = 1;
+    for (int i = 0; i < 3; ++i) {
+      const HalfEdgeId e = 3 * t + i;
+      if (mesh.is_constrained(e) && (mesh.twin(e) == kNone || mesh.twin(e) > e)) ++r.segments;
+    }
+    ++r.triangles;
+    const double angles[3] = {angle_at(a, b, c), angle_at(b, c, a), angle_at(c, a, b)};
+    const double lo = std::min({angles[0], angles[1], angles[2]});
+    const double hi = std::max({angles[0], angles[1], angles[2]});
+    for (double ang : angles) r.angle_histogram[std::min<std::size_t>(17, static_cast<std::size_t>(ang / 10.0))]++;
+    const double l2[3] = {(b.x - a.x) * (b.x - a.x) + (b.y - a.y) * (b.y - a.y),
+                          (c.x - b.x) * (c.x - b.x) + (c.y - b.y) * (c.y - b.y),
+                          (a.x - c.x) * (a.x - c.x) + (a.y - c.y) * (a.y - c.y)};
+    const double shortest = std::sqrt(std::min({l2[0], l2[1], l2[2]}));
+    const double longest = std::sqrt(std::max({l2[0], l2[1], l2[2]}));
+    const double area = 0.5 * std::fabs((b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x));
+    // Shortest altitude = 2 area / longest edge.
+    const double aspect = area > 0 ? longest * longest / (2 * area) : INFINITY;
+    // Circumradius = abc / (4 area).
+    const double radius = area > 0 ? std::sqrt(l2[0] * l2[1] * l2[2]) / (4 * area) : INFINITY;
+    const double re = shortest > 0 ? radius / shortest : INFINITY;
+    std::size_t bin = 0;
+    while (bin < QualityReport::kAspectLimits.size() && aspect > QualityReport::kAspectLimits[bin]) ++bin;
+    r.aspect_histogram[bin]++;
+    if (first) {
+      r.min_angle_deg = lo, r.max_angle_deg = hi;
+      r.min_aspect_ratio = r.max_aspect_ratio = aspect;
+      r.min_radius_edge = r.max_radius_edge = re;
+      r.min_area = r.max_area = area;
+      r.shortest_edge = shortest, r.longest_edge = longest;
+      first = false;
+    } else {
+      r.min_angle_deg = std::min(r.min_angle_deg, lo), r.max_angle_deg = std::max(r.max_angle_deg, hi);
+      r.min_aspect_ratio = std::min(r.min_aspect_ratio, aspect);
+      r.max_aspect_ratio = std::max(r.max_aspect_ratio, aspect);
+      r.min_radius_edge = std::min(r.min_radius_edge, re), r.max_radius_edge = std::max(r.max_radius_edge, re);
+      r.min_area = std::min(r.min_area, area), r.max_area = std::max(r.max_area, area);
+      r.shortest_edge = std::min(r.shortest_edge, shortest), r.longest_edge = std::max(r.longest_edge, longest);
+    }
+    if (opt.min_angle_deg > 0 && lo < opt.min_angle_deg) ++r.below_angle;
+    double bound = opt.max_area;
+    const double tb = mesh.triangle_area_bound(t);
+    if (tb > 0 && (bound <= 0 || tb < bound)) bound = tb;
+    if (bound > 0 && area > bound) ++r.above_area;
+  }
+  const std::size_t ninput = std::min(opt.input_vertices, nv);
+  for (std::size_t v = 0; v < nv; ++v) {
+    if (!used[v]) continue;
+    ++r.vertices;
+    if (v < ninput) ++r.input_vertices;
+    else ++r.steiner_vertices;
+  }
+  return r;
+}
+
+std::string QualityReport::text() const {
+  std::ostringstream o;
+  o << "Mesh quality statistics:\n";
+  o << "  triangles: " << triangles << ", vertices: " << vertices << " (" << input_vertices << " input, "
+    << steiner_vertices << " Steiner), segments: " << segments << "\n";
+  o << "  smallest area: " << fmt(min_area) << "   largest area: " << fmt(max_area) << "\n";
+  o << "  shortest edge: " << fmt(shortest_edge) << "   longest edge: " << fmt(longest_edge) << "\n";
+  o << "  smallest angle: " << fmt(min_angle_deg) << "°   largest angle: " << fmt(max_angle_deg) << "°\n";
+  o << "  aspect ratio (longest edge / shortest altitude): " << fmt(min_aspect_ratio) << " .. "
+    << fmt(max_aspect_ratio) << "\n";
+  o << "  radius-edge ratio (circumradius / shortest edge): " << fmt(min_radius_edge) << " .. "
+    << fmt(max_radius_edge) << "\n";
+  o << "  aspect ratio histogram:\n";
+  double lo = 2 / std::sqrt(3.0);
+  for (std::size_t i = 0; i < aspect_histogram.size(); ++i) {
+    const double hi = i < kAspectLimits.size() ? kAspectLimits[i] : INFINITY;
+    char buf[96];
+    std::snprintf(buf, sizeof buf, "    %8.4g - %-8.4g : %zu\n", lo, hi, aspect_histogram[i]);
+    o << buf;
+    lo = hi;
+  }
+  o << "  angle histogram (every angle of every triangle):\n";
+  for (std::size_t i = 0; i < 9; ++i) {
+    char buf[96];
+    std::snprintf(buf, sizeof buf, "    %3zu - %3zu degrees: %10zu    %3zu - %3zu degrees: %10zu\n", 10 * i,
+                  10 * i + 10, angle_histogram[i], 10 * i + 90, 10 * i + 100, angle_histogram[i + 9]);
+    o << buf;
+  }
+  if (angle_bound_deg > 0) {
+    o << "  triangles with an angle below " << fmt(angle_bound_deg) << "°: " << below_angle << "\n";
+    if (refine && below_angle > 0) {
+      o << "    at input angles < 60° (expected): " << refine->below_small_input_angle << "\n";
+      if (refine->below_segment_protected) o << "    needing a segment split -Y/-YY forbids: " << refine->below_segment_protected << "\n";
+      if (refine->below_budget) o << "    left when a budget stopped refinement: " << refine->below_budget << "\n";
+      if (refine->below_precision) o << "    at the precision of doubles: " << refine->below_precision << "\n";
+    }
+  }
+  if (above_area > 0) o << "  triangles above their area bound: " << above_area << "\n";
+  if (refine) o << "  " << refine->summary() << "\n";
+  return o.str();
+}
+
+std::string QualityReport::json() const {
+  std::ostringstream o;
+  auto num = [](double v) { return std::isfinite(v) ? fmt(v) : std::string("null"); };
+  o << "{\"triangles\":" << triangles << ",\"vertices\":" << vertices << ",\"input_vertices\":" << input_vertices
+    << ",\"steiner_vertices\":" << steiner_vertices << ",\"segments\":" << segments
+    << ",\"min_angle_deg\":" << num(min_angle_deg) << ",\"max_angle_deg\":" << num(max_angle_deg)
+    << ",\"min_aspect_ratio\":" << num(min_aspect_ratio) << ",\"max_aspect_ratio\":" << num(max_aspect_ratio)
+    << ",\"min_radius_edge\":" << num(min_radius_edge) << ",\"max_radius_edge\":" << num(max_radius_edge)
+    << ",\"min_area\":" << num(min_area) << ",\"max_area\":" << num(max_area)
+    << ",\"shortest_edge\":" << num(shortest_edge) << ",\"longest_edge\":" << num(longest_edge)
+    << ",\"angle_histogram_deg10\":[";
+  for (std::size_t i = 0; i < angle_histogram.size(); ++i) o << (i ? "," : "") << angle_histogram[i];
+  o << "],\"aspect_histogram\":{\"limits\":[";
+  for (std::size_t i = 0; i < kAspectLimits.size(); ++i) o << (i ? "," : "") << fmt(kAspectLimits[i]);
+  o << "],\"counts\":[";
+  for (std::size_t i = 0; i < aspect_histogram.size(); ++i) o << (i ? "," : "") << aspect_histogram[i];
+  o << "]},\"angle_bound_deg\":" << num(angle_bound_deg) << ",\"below_angle\":" << below_angle
+    << ",\"above_area\":" << above_area;
+  if (refine) {
+    const RefineStats& s = *refine;
+    o << ",\"refine\":{\"complete\":" << (s.complete ? "true" : "false")
+      << ",\"budget_exhausted\":" << (s.budget_exhausted ? "true" : "false")
+      << ",\"time_exhausted\":" << (s.time_exhausted ? "true" : "false") << ",\"input_vertices\":" << s.input_vertices
+      << ",\"steiner_points\":" << s.steiner_points << ",\"segment_splits\":" << s.segment_splits
+      << ",\"interior_points\":" << s.interior_points << ",\"offcenters\":" << s.offcenters
+      << ",\"rejected_points\":" << s.rejected_points << ",\"small_angle_skips\":" << s.small_angle_skips
+      << ",\"below_bound\":" << s.below_bound << ",\"below_reasons\":{\"small_input_angle\":"
+      << s.below_small_input_angle << ",\"segment_protected\":" << s.below_segment_protected
+      << ",\"budget\":" << s.below_budget << ",\"precision\":" << s.below_precision << "}"
+      << ",\"too_large\":" << s.too_large << ",\"seconds\":" << num(s.seconds) << "}";
+  }
+  o << "}";
+  return o.str();
+}
+
+}  // namespace deltamesh

@@ -1,0 +1,1210 @@
+// Delaunay refinement (seed §3, Figure 18) with off-centres and the §3.6
+// small-angle rules. See include/deltamesh/refine.hpp for the interface.
+//
+// Method, from the literature (no code taken from any implementation):
+//  - J. Ruppert, "A Delaunay refinement algorithm for quality 2-dimensional
+//    mesh generation", J. Algorithms 1995: rules R1/R2, diametral circles.
+//  - J. R. Shewchuk, "Delaunay refinement algorithms for triangular mesh
+//    generation", CGTA 2002: concentric shells around input vertices,
+//    diametral lenses, refusing segment splits that would cascade at small
+//    angles, worst-first processing.
+//  - A. Üngör, "Off-centers: a new type of Steiner points for computing
+//    size-optimal quality-guaranteed Delaunay triangulations", LATIN 2004.
+//  - G. L. Miller, S. E. Pav, N. J. Walkington, "When and why Ruppert's
+//    algorithm works", IMR 2003: do not split skinny triangles whose shortest
+//    edge faces a small input angle.
+//
+// Design (see docs in refine.hpp):
+//  - Insertion is Bowyer-Watson on the raw mesh arrays: the cavity (triangles
+//    whose circumcircle strictly contains the point, grown without crossing
+//    constrained edges) is found read-only first, so the same search tells
+//    whether a Steiner point encroaches a segment (R2) before anything
+//    changes; committing rewrites the k cavity slots and appends two.
+//  - A point is located by a straight walk from the skinny triangle towards
+//    it that stops at the first segment it would cross: a point beyond a
+//    segment splits that segment instead.
+//  - Bad triangles wait in a queue of 1024 buckets keyed by the sine of their
+//    smallest angle (worst first, O(1) push/pop with a bitmap); triangles
+//    that are only too large wait on a LIFO stack (depth-first, which keeps
+//    the working set in cache). Entries carry their slot and three vertex
+//    ids; a stale entry is recognised on pop.
+//  - Encroached subsegments (R1) go first, on a stack of vertex pairs.
+#include "deltamesh/refine.hpp"
+
+#include <algorithm>
+#include <array>
+#include <bit>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <numbers>
+#include <sstream>
+
+#include "core/expansion.hpp"
+#include "deltamesh/predicates.hpp"
+
+namespace deltamesh {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// Exact sign of (a - p)·(b - p): negative iff p lies strictly inside the
+// circle with diameter ab. The magnitude is an approximation.
+double diametral_dot(const Point& a, const Point& b, const Point& p) {
+  const double ax = a.x - p.x, bx = b.x - p.x, ay = a.y - p.y, by = b.y - p.y;
+  const double t1 = ax * bx, t2 = ay * by;
+  const double det = t1 + t2;
+  const double bound = 8.0 * detail::kEpsilon * (std::fabs(t1) + std::fabs(t2));
+  if (det > bound || -det > bound) return det;
+  double dax[2], dbx[2], day[2], dby[2];
+  detail::two_diff(a.x, p.x, dax[1], dax[0]);
+  detail::two_diff(b.x, p.x, dbx[1], dbx[0]);
+  detail::two_diff(a.y, p.y, day[1], day[0]);
+  detail::two_diff(b.y, p.y, dby[1], dby[0]);
+  double px[8], py[8], work[12], sum[16];
+  const int nx = detail::expansion_product(2, dax, 2, dbx, px, work);
+  const int ny = detail::expansion_product(2, day, 2, dby, py, work);
+  const int n = detail::fast_expansion_sum_zeroelim(nx, px, ny, py, sum);
+  return detail::signed_estimate(n, sum);
+}
+
+inline double dist2(const Point& a, const Point& b) {
+  const double dx = a.x - b.x, dy = a.y - b.y;
+  return dx * dx + dy * dy;
+}
+
+constexpr int kBuckets = 1024;
+
+// Why a bad triangle was left alone.
+enum class Reason : std::uint8_t { None, SmallAngle, Protected, Precision, Budget };
+
+struct QueueEntry {
+  TriId t;
+  VertexId a, b, c;
+};
+
+// The bad-triangle queue: skinny triangles in buckets by quality (worst
+// first), triangles that are only too large on a LIFO stack.
+class BadQueue {
+ public:
+  BadQueue() {
+    for (auto& b : buckets_) b.reserve(4);
+  }
+  void push_skinny(int key, const QueueEntry& e) {
+    buckets_[key].push_back(e);
+    bits_[key >> 6] |= std::uint64_t{1} << (key & 63);
+    ++size_;
+  }
+  void push_large(const QueueEntry& e) {
+    large_.push_back(e);
+    ++size_;
+  }
+  bool empty() const { return size_ == 0; }
+  std::size_t size() const { return size_; }
+  QueueEntry pop() {
+    --size_;
+    for (int w = 0; w < kBuckets / 64; ++w) {
+      if (bits_[w] == 0) continue;
+      const int key = 64 * w + std::countr_zero(bits_[w]);
+      std::vector<QueueEntry>& b = buckets_[key];
+      const QueueEntry e = b.back();
+      b.pop_back();
+      if (b.empty()) bits_[w] &= ~(std::uint64_t{1} << (key & 63));
+      return e;
+    }
+    const QueueEntry e = large_.back();
+    large_.pop_back();
+    return e;
+  }
+  template <class F>
+  void for_each(F&& f) const {
+    for (const auto& b : buckets_)
+      for (const QueueEntry& e : b) f(e);
+    for (const QueueEntry& e : large_) f(e);
+  }
+
+ private:
+  std::array<std::vector<QueueEntry>, kBuckets> buckets_;
+  std::array<std::uint64_t, kBuckets / 64> bits_{};
+  std::vector<QueueEntry> large_;
+  std::size_t size_ = 0;
+};
+
+struct Eval {
+  bool skinny = false;
+  bool large = false;
+  int shortest = 0;       // local index i of the shortest edge (3t+i)
+  double sin2 = 1.0;      // sin^2 of the smallest angle
+  double shortest2 = 0;   // squared length of the shortest edge
+};
+
+// One edge of a cavity's boundary, copied before the cavity is rewritten.
+struct BoundaryEdge {
+  VertexId a, b;        // a -> b, counter-clockwise around the cavity
+  HalfEdgeId outer;     // the half-edge b -> a outside the cavity, or kNone
+  std::uint8_t flags;
+  int marker;
+  double area_bound;
+};
+
+class Refiner {
+ public:
+  Refiner(Mesh& mesh, const RefineOptions& opt, RefineStats& st)
+      : m_(mesh),
+        opt_(opt),
+        st_(st),
+        tv_(mesh.tri_v_mut()),
+        tw_(mesh.twin_mut()),
+        fl_(mesh.edge_flags_mut()),
+        mk_(mesh.edge_markers_mut()),
+        pts_(mesh.points_mut()),
+        ve_(mesh.vert_edge_mut()) {}
+
+  void run();
+
+ private:
+  // ---- setup -------------------------------------------------------------
+  void setup();
+  void reserve_for_area_bounds();
+  std::uint32_t input_segment(VertexId a, VertexId b) const;
+
+  // ---- triangle quality ----------------------------------------------------
+  double area_bound(TriId t, const Point& a, const Point& b, const Point& c) const;
+  Eval eval(TriId t) const;
+  void consider(TriId t);
+  bool alive(const QueueEntry& e) const {
+    return e.t < tv_.size() / 3 && tv_[3 * e.t] == e.a && tv_[3 * e.t + 1] == e.b && tv_[3 * e.t + 2] == e.c;
+  }
+  bool faces_small_angle(TriId t, const Eval& ev) const;
+  void apexes(VertexId v, std::array<std::pair<VertexId, std::uint32_t>, 2>& small, int& n,
+              std::vector<std::pair<VertexId, std::uint32_t>>& many) const;
+
+  // ---- Steiner points --------------------------------------------------------
+  Point steiner_point(TriId t, const Eval& ev, bool& offcenter) const;
+  Point split_point(VertexId a, VertexId b) const;
+
+  // ---- location and cavities --------------------------------------------------
+  struct Walk {
+    enum Kind { Found, OnVertex, Blocked, Failed } kind;
+    TriId tri = kNone;
+    HalfEdgeId edge = kNone;  // Found: the edge c lies on (or kNone); Blocked: the segment crossed
+  };
+  Walk walk(TriId t, const Point& c) const;
+  bool cavity(const Point& c, TriId seed);
+  bool split_cavity(HalfEdgeId e, const Point& m);
+  bool grow(const Point& c, std::size_t stack_base);
+  void record_boundary(HalfEdgeId e);
+  bool boundary_visible(const Point& c, std::size_t from, std::size_t to) const;
+
+  // ---- encroachment -----------------------------------------------------------
+  bool encroaches(const Point& a, const Point& b, const Point& p) const;
+  bool encroached(HalfEdgeId e) const;
+  bool splittable(HalfEdgeId e) const;
+  bool refuse_split(HalfEdgeId e, const Eval& ev) const;
+  void check_encroached(HalfEdgeId e, VertexId apex);
+
+  // ---- actions ------------------------------------------------------------------
+  struct Decision {
+    enum Kind { Skip, Split, Insert } kind = Skip;
+    Reason reason = Reason::None;
+    Point c;
+    bool offcenter = false;
+    std::vector<std::pair<VertexId, VertexId>> segments;
+  };
+  void decide(TriId t, Decision& d);
+  void decide_segments(const std::vector<HalfEdgeId>& encroached, const Eval& ev, Decision& d);
+  VertexId new_vertex(const Point& p, std::uint32_t seg, int marker);
+  void insert_interior(const Point& c, TriId seed);
+  void split_segment(HalfEdgeId e);
+  TriId take_slot(std::size_t i, std::size_t fan, VertexId v);
+  bool budget_left();
+  void finish();
+
+  Mesh& m_;
+  const RefineOptions& opt_;
+  RefineStats& st_;
+  std::vector<VertexId>& tv_;
+  std::vector<HalfEdgeId>& tw_;
+  std::vector<std::uint8_t>& fl_;
+  std::vector<int>& mk_;
+  std::vector<Point>& pts_;
+  std::vector<HalfEdgeId>& ve_;
+
+  // Parameters.
+  double sin2_bound_ = 0;       // sin^2 of the angle bound (0: no angle criterion)
+  double off_factor_ = 0;       // off-centre distance from the shortest edge, per unit of its length
+  double lens_cos2_ = 0;        // lens: cos^2 of the smallest subtended angle that encroaches
+  bool lens_ = false;
+  bool has_area_bounds_ = false;  // refine for the mesh's per-triangle bounds
+  bool carry_bounds_ = false;     // the mesh has per-triangle bounds: keep them on new triangles
+  bool has_markers_ = false;
+  double precision2_ = 0;       // squared shortest edge below which nothing is split
+  std::size_t budget_ = kUnlimited;
+  std::size_t n_input_ = 0;
+
+  // Input segments (the constrained edges when refinement starts).
+  std::vector<std::array<VertexId, 2>> segs_;
+  std::vector<std::uint8_t> seg_small_;      // bit 0/1: endpoint 0/1 is a small-angle apex for it
+  std::vector<std::uint32_t> adj_start_;     // CSR over input vertices
+  std::vector<std::pair<VertexId, std::uint32_t>> adj_;  // (other endpoint, segment)
+  std::vector<std::uint32_t> seg_of_;        // per Steiner vertex on a segment: its segment
+
+  BadQueue queue_;
+  std::vector<std::pair<VertexId, VertexId>> encroached_;
+
+  // Scratch, reused by every insertion.
+  std::vector<TriId> cav_;
+  std::vector<BoundaryEdge> bnd_;
+  std::vector<HalfEdgeId> stack_;
+  std::vector<TriId> fan_;
+  std::vector<HalfEdgeId> enc_scratch_;
+  std::size_t side_split_ = 0;  // split cavities: boundary edges of side one
+  Decision decision_;
+
+  Clock::time_point start_;
+  std::size_t iterations_ = 0;
+  bool stopped_ = false;
+};
+
+// ===========================================================================
+// Setup
+
+void Refiner::setup() {
+  n_input_ = pts_.size();
+  st_.input_vertices = n_input_;
+  const double theta = std::clamp(opt_.min_angle_deg, 0.0, 60.0);
+  st_.min_angle_deg = theta;
+  const double rad = theta * std::numbers::pi / 180.0;
+  sin2_bound_ = theta > 0 ? std::sin(rad) * std::sin(rad) : 0.0;
+  // The off-centre sits where the shortest edge pq subtends the bound
+  // angle, i.e. at distance |pq|/2 · cot(theta/2) from pq's midpoint; a
+  // little nearer, so that the new triangle clears the bound after rounding.
+  off_factor_ = theta > 0 ? 0.5 * 0.98 / std::tan(rad / 2) : 0.0;
+  lens_ = opt_.encroachment == EncroachmentRule::DiametralLens && !opt_.conforming_delaunay;
+  if (lens_) {
+    const double phi = std::max(90.0, 180.0 - 2.0 * theta) * std::numbers::pi / 180.0;
+    lens_cos2_ = std::cos(phi) * std::cos(phi);
+  }
+  carry_bounds_ = m_.has_triangle_area_bounds();
+  has_area_bounds_ = opt_.use_triangle_area_bounds && carry_bounds_;
+  budget_ = opt_.max_steiner;
+  if (budget_ == kAutomaticBudget)
+    budget_ = theta <= kAutomaticBudgetAngle ? kUnlimited : 10'000'000 + 100 * n_input_;
+
+  // Bounding box: the precision floor for splitting.
+  double lox = 0, hix = 0, loy = 0, hiy = 0;
+  bool first = true;
+  for (VertexId v : tv_) {
+    if (v >= pts_.size()) continue;
+    const Point& p = pts_[v];
+    if (first) {
+      lox = hix = p.x;
+      loy = hiy = p.y;
+      first = false;
+    }
+    lox = std::min(lox, p.x), hix = std::max(hix, p.x), loy = std::min(loy, p.y), hiy = std::max(hiy, p.y);
+  }
+  const double diag2 = (hix - lox) * (hix - lox) + (hiy - loy) * (hiy - loy);
+  precision2_ = diag2 * 0x1p-90;  // shortest edges below 2^-45 of the diameter are not split
+
+  // Every boundary edge is a segment.
+  const std::size_t ne = tv_.size();
+  for (HalfEdgeId e = 0; e < ne; ++e)
+    if (tw_[e] == kNone && !m_.is_constrained(e)) m_.set_edge_flags(e, m_.edge_flags(e) | kConstrained);
+  has_markers_ = m_.has_edge_markers();
+
+  // Input segments and their incidence at input vertices.
+  adj_start_.assign(n_input_ + 1, 0);
+  for (HalfEdgeId e = 0; e < ne; ++e) {
+    if (!(fl_[e] & kConstrained) || (tw_[e] != kNone && tw_[e] < e)) continue;
+    const VertexId a = tv_[e], b = tv_[next_edge(e)];
+    segs_.push_back({a, b});
+    ++adj_start_[a + 1];
+    ++adj_start_[b + 1];
+  }
+  for (std::size_t v = 0; v < n_input_; ++v) adj_start_[v + 1] += adj_start_[v];
+  adj_.resize(adj_start_[n_input_]);
+  {
+    std::vector<std::uint32_t> fill(adj_start_.begin(), adj_start_.end() - 1);
+    for (std::uint32_t s = 0; s < segs_.size(); ++s) {
+      const auto [a, b] = segs_[s];
+      adj_[fill[a]++] = {b, s};
+      adj_[fill[b]++] = {a, s};
+    }
+  }
+  // Small-angle apexes: two segments at an input vertex less than 60° apart.
+  seg_small_.assign(segs_.size(), 0);
+  for (VertexId v = 0; v < n_input_; ++v) {
+    const std::uint32_t lo = adj_start_[v], hi = adj_start_[v + 1];
+    for (std::uint32_t i = lo; i < hi; ++i)
+      for (std::uint32_t j = i + 1; j < hi; ++j) {
+        const Point& p = pts_[v];
+        const Point& a = pts_[adj_[i].first];
+        const Point& b = pts_[adj_[j].first];
+        const double ux = a.x - p.x, uy = a.y - p.y, wx = b.x - p.x, wy = b.y - p.y;
+        const double dot = ux * wx + uy * wy;
+        // angle < 60°  <=>  cos > 1/2
+        if (dot > 0 && 4 * dot * dot > (ux * ux + uy * uy) * (wx * wx + wy * wy)) {
+          for (std::uint32_t k : {i, j}) {
+            const std::uint32_t s = adj_[k].second;
+            seg_small_[s] |= segs_[s][0] == v ? 1 : 2;
+          }
+        }
+      }
+  }
+  seg_of_.assign(n_input_, kNone);
+  if (!m_.vertex_markers().empty()) m_.vertex_markers().resize(n_input_, 0);
+  reserve_for_area_bounds();
+}
+
+std::uint32_t Refiner::input_segment(VertexId a, VertexId b) const {
+  if (a < n_input_) {
+    for (std::uint32_t i = adj_start_[a]; i < adj_start_[a + 1]; ++i)
+      if (adj_[i].first == b) return adj_[i].second;
+  }
+  return kNone;
+}
+
+// With area bounds the final size is predictable: reserve it, so the arrays
+// do not double (and briefly triple) at the end.
+void Refiner::reserve_for_area_bounds() {
+  const bool global = opt_.max_area > 0;
+  if (!global && !has_area_bounds_) return;
+  double estimate = 0;
+  const std::size_t nt = tv_.size() / 3;
+  for (TriId t = 0; t < nt; ++t) {
+    if (tv_[3 * t] >= pts_.size()) continue;
+    const Point& a = pts_[tv_[3 * t]];
+    const Point& b = pts_[tv_[3 * t + 1]];
+    const Point& c = pts_[tv_[3 * t + 2]];
+    const double area = 0.5 * ((b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x));
+    double bound = global ? opt_.max_area : -1;
+    if (has_area_bounds_) {
+      const double tb = m_.triangle_area_bound(t);
+      if (tb > 0 && (bound <= 0 || tb < bound)) bound = tb;
+    }
+    if (bound > 0) estimate += area / bound;
+  }
+  // Refinement to an area bound A ends with triangles of mean area ~0.6 A.
+  const double tris = 1.75 * estimate + static_cast<double>(nt);
+  if (tris > 1e10) return;
+  const auto want_t = static_cast<std::size_t>(tris);
+  if (want_t > nt) {
+    m_.reserve(pts_.size() + want_t / 2 + 16, want_t + 16);
+    fl_.reserve(3 * (want_t + 16));
+    if (has_markers_) mk_.reserve(3 * (want_t + 16));
+    seg_of_.reserve(pts_.size() + want_t / 2 + 16);
+  }
+}
+
+// ===========================================================================
+// Quality
+
+double Refiner::area_bound(TriId t, const Point& a, const Point& b, const Point& c) const {
+  double bound = opt_.max_area;
+  if (has_area_bounds_) {
+    const double tb = m_.triangle_area_bound(t);
+    if (tb > 0 && (bound <= 0 || tb < bound)) bound = tb;
+  }
+  if (opt_.max_area_at) {
+    const double cb = opt_.max_area_at((a.x + b.x + c.x) / 3.0, (a.y + b.y + c.y) / 3.0);
+    if (cb > 0 && (bound <= 0 || cb < bound)) bound = cb;
+  }
+  return bound;
+}
+
+Eval Refiner::eval(TriId t) const {
+  Eval ev;
+  const HalfEdgeId e = 3 * t;
+  const Point& a = pts_[tv_[e]];
+  const Point& b = pts_[tv_[e + 1]];
+  const Point& c = pts_[tv_[e + 2]];
+  const double l0 = dist2(a, b), l1 = dist2(b, c), l2 = dist2(c, a);
+  const double cross = (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
+  double lo = l0, o1 = l1, o2 = l2;
+  int s = 0;
+  if (l1 < lo) lo = l1, o1 = l2, o2 = l0, s = 1;
+  if (l2 < lo) lo = l2, o1 = l0, o2 = l1, s = 2;
+  ev.shortest = s;
+  ev.shortest2 = lo;
+  // The smallest angle faces the shortest edge: sin = cross / (|o1| |o2|).
+  const double den = o1 * o2;
+  ev.sin2 = den > 0 ? cross * cross / den : 0.0;
+  ev.skinny = ev.sin2 < sin2_bound_;
+  const double bound = area_bound(t, a, b, c);
+  if (bound > 0 && 0.5 * cross > bound) ev.large = true;
+  if (opt_.max_edge_at) {
+    const double eb = opt_.max_edge_at((a.x + b.x + c.x) / 3.0, (a.y + b.y + c.y) / 3.0);
+    if (eb > 0 && std::max({l0, l1, l2}) > eb * eb) ev.large = true;
+  }
+  return ev;
+}
+
+void Refiner::consider(TriId t) {
+  const Eval ev = eval(t);
+  if (!ev.skinny && !ev.large) return;
+  const QueueEntry q{t, tv_[3 * t], tv_[3 * t + 1], tv_[3 * t + 2]};
+  if (ev.skinny) {
+    int key = static_cast<int>(ev.sin2 / sin2_bound_ * kBuckets);
+    key = std::clamp(key, 0, kBuckets - 1);
+    queue_.push_skinny(key, q);
+  } else {
+    queue_.push_large(q);
+  }
+}
+
+// The segments an apex candidate list holds for vertex v: (apex, segment)
+// pairs such that v lies on the segment and the apex is its other end.
+void Refiner::apexes(VertexId v, std::array<std::pair<VertexId, std::uint32_t>, 2>& two, int& n,
+                     std::vector<std::pair<VertexId, std::uint32_t>>& many) const {
+  n = 0;
+  many.clear();
+  if (v >= n_input_) {
+    const std::uint32_t s = seg_of_[v];
+    if (s == kNone || !seg_small_[s]) return;
+    if (seg_small_[s] & 1) two[n++] = {segs_[s][0], s};
+    if (seg_small_[s] & 2) two[n++] = {segs_[s][1], s};
+    return;
+  }
+  for (std::uint32_t i = adj_start_[v]; i < adj_start_[v + 1]; ++i) {
+    const auto [w, s] = adj_[i];
+    // v is an endpoint of s; the apex is the other endpoint w.
+    const std::uint8_t bit = segs_[s][0] == w ? 1 : 2;
+    if (seg_small_[s] & bit) many.push_back({w, s});
+  }
+}
+
+// Miller-Pav-Walkington: the shortest edge joins two different segments
+// that meet at an apex at an angle below 60°.
+bool Refiner::faces_small_angle(TriId t, const Eval& ev) const {
+  const HalfEdgeId e = 3 * t + ev.shortest;
+  const VertexId p = tv_[e], q = tv_[next_edge(e)];
+  std::array<std::pair<VertexId, std::uint32_t>, 2> tp, tq;
+  int np = 0, nq = 0;
+  thread_local std::vector<std::pair<VertexId, std::uint32_t>> mp, mq;
+  apexes(p, tp, np, mp);
+  if (np == 0 && mp.empty()) return false;
+  apexes(q, tq, nq, mq);
+  if (nq == 0 && mq.empty()) return false;
+  for (int i = 0; i < np; ++i) mp.push_back(tp[i]);
+  for (int i = 0; i < nq; ++i) mq.push_back(tq[i]);
+  for (const auto& [ap, sp] : mp)
+    for (const auto& [aq, sq] : mq) {
+      if (ap != aq || sp == sq) continue;
+      const Point& A = pts_[ap];
+      const VertexId op = segs_[sp][0] == ap ? segs_[sp][1] : segs_[sp][0];
+      const VertexId oq = segs_[sq][0] == aq ? segs_[sq][1] : segs_[sq][0];
+      const double ux = pts_[op].x - A.x, uy = pts_[op].y - A.y;
+      const double wx = pts_[oq].x - A.x, wy = pts_[oq].y - A.y;
+      const double dot = ux * wx + uy * wy;
+      if (dot > 0 && 4 * dot * dot > (ux * ux + uy * uy) * (wx * wx + wy * wy)) return true;
+    }
+  return false;
+}
+
+// ===========================================================================
+// Steiner points
+
+Point Refiner::steiner_point(TriId t, const Eval& ev, bool& offcenter) const {
+  offcenter = false;
+  const HalfEdgeId e = 3 * t + ev.shortest;
+  const Point P = pts_[tv_[e]];
+  const Point Q = pts_[tv_[next_edge(e)]];
+  const Point R = pts_[tv_[prev_edge(e)]];
+  const double dx = Q.x - P.x, dy = Q.y - P.y, ex = R.x - P.x, ey = R.y - P.y;
+  const double l2 = dx * dx + dy * dy, e2 = ex * ex + ey * ey;
+  const double det = orient2d(P, Q, R);  // adaptive: accurate for skinny triangles
+  const double den = 0.5 / det;
+  const double ux = (ey * l2 - dy * e2) * den, uy = (dx * e2 - ex * l2) * den;
+  if (opt_.steiner == SteinerRule::Circumcenter || !ev.skinny) return {P.x + ux, P.y + uy};
+  // Off-centre: along the bisector of PQ from its midpoint towards the circumcentre.
+  const double mx = ux - 0.5 * dx, my = uy - 0.5 * dy;
+  const double dc2 = mx * mx + my * my;
+  const double h = off_factor_ * std::sqrt(l2);
+  if (dc2 <= h * h) return {P.x + ux, P.y + uy};
+  offcenter = true;
+  const double s = h / std::sqrt(dc2);
+  return {P.x + 0.5 * dx + mx * s, P.y + 0.5 * dy + my * s};
+}
+
+// Where subsegment ab is split: on a concentric shell (a power-of-two
+// distance) around its input-vertex end when exactly one end is an input
+// vertex, so that the splits of segments meeting at an apex stay at equal
+// distances from it and never encroach each other; otherwise the midpoint.
+Point Refiner::split_point(VertexId a, VertexId b) const {
+  const Point& A = pts_[a];
+  const Point& B = pts_[b];
+  const bool ain = a < n_input_, bin = b < n_input_;
+  if (opt_.small_angle_protection && ain != bin) {
+    const Point& apex = ain ? A : B;
+    const Point& other = ain ? B : A;
+    const double len = std::sqrt(dist2(apex, other));
+    const double half = 0.5 * len;
+    int ex;
+    std::frexp(half, &ex);  // half = f * 2^ex, f in [0.5, 1)
+    double shell = std::ldexp(1.0, ex - 1);  // <= half < 2 * shell
+    if (half > shell * std::numbers::sqrt2) shell *= 2;
+    const double f = shell / len;
+    return {apex.x + (other.x - apex.x) * f, apex.y + (other.y - apex.y) * f};
+  }
+  return {0.5 * (A.x + B.x), 0.5 * (A.y + B.y)};
+}
+
+// ===========================================================================
+// Location
+
+// Straight walk along the ray from t's centroid to c. Stops in the triangle
+// holding c, or at the first segment (or boundary edge) the ray crosses.
+// A vertex exactly on the ray is treated as lying to its left (a symbolic
+// perturbation), so each step is decided by one exact orientation.
+Refiner::Walk Refiner::walk(TriId t, const Point& c) const {
+  Walk w;
+  const HalfEdgeId b0 = 3 * t;
+  const Point& A = pts_[tv_[b0]];
+  const Point& B = pts_[tv_[b0 + 1]];
+  const Point& C = pts_[tv_[b0 + 2]];
+  {
+    const double o0 = orient2d(A, B, c), o1 = orient2d(B, C, c), o2 = orient2d(C, A, c);
+    if (o0 >= 0 && o1 >= 0 && o2 >= 0) {
+      w.tri = t;
+      if (c == A || c == B || c == C) {
+        w.kind = Walk::OnVertex;
+        return w;
+      }
+      w.kind = Walk::Found;
+      if (o0 == 0) w.edge = b0;
+      else if (o1 == 0) w.edge = b0 + 1;
+      else if (o2 == 0) w.edge = b0 + 2;
+      return w;
+    }
+  }
+  const Point o{(A.x + B.x + C.x) / 3.0, (A.y + B.y + C.y) / 3.0};
+  if (!(orient2d(A, B, o) > 0 && orient2d(B, C, o) > 0 && orient2d(C, A, o) > 0)) {
+    w.kind = Walk::Failed;
+    return w;
+  }
+  const bool left[3] = {orient2d(o, c, A) >= 0, orient2d(o, c, B) >= 0, orient2d(o, c, C) >= 0};
+  HalfEdgeId exit = kNone;
+  for (int i = 0; i < 3; ++i)
+    if (!left[i] && left[(i + 1) % 3]) exit = b0 + i;
+  if (exit == kNone) {
+    w.kind = Walk::Failed;
+    return w;
+  }
+  const std::size_t limit = tv_.size();
+  for (std::size_t steps = 0; steps < limit; ++steps) {
+    const HalfEdgeId f = tw_[exit];
+    if (f == kNone || (fl_[exit] & kConstrained)) {
+      w.kind = Walk::Blocked;
+      w.tri = tri_of(exit);
+      w.edge = exit;
+      return w;
+    }
+    // Entered triangle u through f = (x -> y), x left of the ray, y right.
+    const VertexId apex = tv_[prev_edge(f)];
+    const Point& W = pts_[apex];
+    const HalfEdgeId cand = orient2d(o, c, W) >= 0 ? next_edge(f) : prev_edge(f);
+    const Point& P = pts_[tv_[cand]];
+    const Point& Q = pts_[tv_[next_edge(cand)]];
+    const double oc = orient2d(P, Q, c);
+    if (oc >= 0) {
+      w.tri = tri_of(f);
+      if (c == P || c == Q || c == W) {
+        w.kind = Walk::OnVertex;
+        return w;
+      }
+      w.kind = Walk::Found;
+      if (oc == 0) w.edge = cand;
+      return w;
+    }
+    exit = cand;
+  }
+  w.kind = Walk::Failed;
+  return w;
+}
+
+void Refiner::record_boundary(HalfEdgeId e) {
+  BoundaryEdge b;
+  b.a = tv_[e];
+  b.b = tv_[next_edge(e)];
+  b.outer = tw_[e];
+  b.flags = fl_[e];
+  b.marker = has_markers_ ? mk_[e] : 0;
+  b.area_bound = carry_bounds_ ? m_.triangle_area_bound(tri_of(e)) : -1.0;
+  bnd_.push_back(b);
+}
+
+// Depth-first growth of the cavity from the half-edges on stack_ above
+// stack_base; boundary edges are recorded in counter-clockwise order.
+bool Refiner::grow(const Point& c, std::size_t stack_base) {
+  while (stack_.size() > stack_base) {
+    const HalfEdgeId e = stack_.back();
+    stack_.pop_back();
+    const HalfEdgeId f = tw_[e];
+    if (f != kNone && !(fl_[e] & kConstrained)) {
+      const TriId u = tri_of(f);
+      const Point& pa = pts_[tv_[f]];
+      const Point& pb = pts_[tv_[next_edge(f)]];
+      const Point& pc = pts_[tv_[prev_edge(f)]];
+      if (incircle(pa, pb, pc, c) > 0) {
+        // The cavity's dual graph is a tree; meeting a triangle twice means
+        // the predicates and the mesh disagree: give up on this point.
+        if (std::find(cav_.begin(), cav_.end(), u) != cav_.end()) return false;
+        cav_.push_back(u);
+        stack_.push_back(prev_edge(f));
+        stack_.push_back(next_edge(f));
+        continue;
+      }
+    }
+    record_boundary(e);
+  }
+  return true;
+}
+
+bool Refiner::boundary_visible(const Point& c, std::size_t from, std::size_t to) const {
+  for (std::size_t i = from; i < to; ++i)
+    if (!(orient2d(pts_[bnd_[i].a], pts_[bnd_[i].b], c) > 0)) return false;
+  return true;
+}
+
+// Cavity of point c (inside seed or on one of its unconstrained edges).
+bool Refiner::cavity(const Point& c, TriId seed) {
+  cav_.clear();
+  bnd_.clear();
+  stack_.clear();
+  cav_.push_back(seed);
+  stack_.push_back(3 * seed + 2);
+  stack_.push_back(3 * seed + 1);
+  stack_.push_back(3 * seed);
+  if (!grow(c, 0)) return false;
+  return boundary_visible(c, 0, bnd_.size());
+}
+
+// Cavity of point m splitting the constrained edge e = (a -> b): side one
+// (e's triangle) then side two (its twin's), each boundary running b ... a
+// and a ... b respectively.
+bool Refiner::split_cavity(HalfEdgeId e, const Point& m) {
+  cav_.clear();
+  bnd_.clear();
+  stack_.clear();
+  cav_.push_back(tri_of(e));
+  stack_.push_back(prev_edge(e));
+  stack_.push_back(next_edge(e));
+  if (!grow(m, 0)) return false;
+  side_split_ = bnd_.size();
+  const HalfEdgeId f = tw_[e];
+  if (f != kNone) {
+    cav_.push_back(tri_of(f));
+    stack_.push_back(prev_edge(f));
+    stack_.push_back(next_edge(f));
+    if (!grow(m, 0)) return false;
+  }
+  return boundary_visible(m, 0, bnd_.size());
+}
+
+// ===========================================================================
+// Encroachment
+
+bool Refiner::encroaches(const Point& a, const Point& b, const Point& p) const {
+  if (!lens_) return diametral_dot(a, b, p) < 0;
+  const double ax = a.x - p.x, ay = a.y - p.y, bx = b.x - p.x, by = b.y - p.y;
+  const double dot = ax * bx + ay * by;
+  if (!(dot < 0)) return false;
+  return dot * dot > lens_cos2_ * (ax * ax + ay * ay) * (bx * bx + by * by);
+}
+
+bool Refiner::encroached(HalfEdgeId e) const {
+  const Point& a = pts_[tv_[e]];
+  const Point& b = pts_[tv_[next_edge(e)]];
+  if (encroaches(a, b, pts_[tv_[prev_edge(e)]])) return true;
+  const HalfEdgeId f = tw_[e];
+  return f != kNone && encroaches(a, b, pts_[tv_[prev_edge(f)]]);
+}
+
+bool Refiner::splittable(HalfEdgeId e) const {
+  switch (opt_.segment_splitting) {
+    case SegmentSplitting::All: break;
+    case SegmentSplitting::InteriorOnly:
+      if (tw_[e] == kNone) return false;
+      break;
+    case SegmentSplitting::None: return false;
+  }
+  const Point& a = pts_[tv_[e]];
+  const Point& b = pts_[tv_[next_edge(e)]];
+  const Point m = split_point(tv_[e], tv_[next_edge(e)]);
+  return !(m == a || m == b) && dist2(a, b) >= precision2_;
+}
+
+// Shewchuk's rule against cascades at small angles: a segment next to a
+// small-angle apex is not split on behalf of a skinny triangle when the split
+// would make a subsegment shorter than the triangle's shortest edge.
+bool Refiner::refuse_split(HalfEdgeId e, const Eval& ev) const {
+  if (!opt_.small_angle_protection) return false;
+  const VertexId a = tv_[e], b = tv_[next_edge(e)];
+  std::uint32_t s = a >= n_input_ ? seg_of_[a] : (b >= n_input_ ? seg_of_[b] : input_segment(a, b));
+  if (s == kNone || !seg_small_[s]) return false;
+  const Point m = split_point(a, b);
+  const double part = std::min(dist2(m, pts_[a]), dist2(m, pts_[b]));
+  return part < ev.shortest2;
+}
+
+void Refiner::check_encroached(HalfEdgeId e, VertexId apex) {
+  if (!(fl_[e] & kConstrained)) return;
+  const VertexId a = tv_[e], b = tv_[next_edge(e)];
+  if (!encroaches(pts_[a], pts_[b], pts_[apex])) return;
+  if (!splittable(e)) return;
+  encroached_.push_back({a, b});
+}
+
+// ===========================================================================
+// Decisions
+
+// What to do with bad triangle t: skip it (and why), split segments, or
+// insert its Steiner point (cavity left in cav_/bnd_).
+void Refiner::decide(TriId t, Decision& d) {
+  d.kind = Decision::Skip;
+  d.reason = Reason::None;
+  d.segments.clear();
+  const Eval ev = eval(t);
+  if (!ev.skinny && !ev.large) return;
+  if (ev.skinny && !ev.large && opt_.small_angle_protection && faces_small_angle(t, ev)) {
+    d.reason = Reason::SmallAngle;
+    return;
+  }
+  if (ev.shortest2 < precision2_) {
+    d.reason = Reason::Precision;
+    return;
+  }
+  d.c = steiner_point(t, ev, d.offcenter);
+  if (!std::isfinite(d.c.x) || !std::isfinite(d.c.y)) {
+    d.reason = Reason::Precision;
+    return;
+  }
+  const Walk w = walk(t, d.c);
+  enc_scratch_.clear();
+  switch (w.kind) {
+    case Walk::Failed:
+    case Walk::OnVertex:
+      d.reason = Reason::Precision;
+      return;
+    case Walk::Blocked:
+      enc_scratch_.push_back(w.edge);
+      decide_segments(enc_scratch_, ev, d);
+      return;
+    case Walk::Found:
+      break;
+  }
+  if (w.edge != kNone && (fl_[w.edge] & kConstrained)) {  // on a segment
+    enc_scratch_.push_back(w.edge);
+    decide_segments(enc_scratch_, ev, d);
+    return;
+  }
+  if (!cavity(d.c, w.tri)) {
+    d.reason = Reason::Precision;
+    return;
+  }
+  bool protected_only = false;
+  for (const BoundaryEdge& b : bnd_) {
+    if (!(b.flags & kConstrained) || !encroaches(pts_[b.a], pts_[b.b], d.c)) continue;
+    // Half-edge of the segment: inside the cavity (its slot is still intact).
+    const HalfEdgeId e = b.outer != kNone ? tw_[b.outer] : m_.find_edge(b.a, b.b);
+    if (e == kNone) continue;
+    if (!splittable(e)) {
+      protected_only = true;
+      continue;
+    }
+    enc_scratch_.push_back(e);
+  }
+  (void)protected_only;  // a point encroaching only unsplittable segments is inserted anyway
+  if (!enc_scratch_.empty()) {
+    decide_segments(enc_scratch_, ev, d);
+    return;
+  }
+  d.kind = Decision::Insert;
+}
+
+void Refiner::decide_segments(const std::vector<HalfEdgeId>& enc, const Eval& ev, Decision& d) {
+  Reason why = Reason::None;
+  for (HalfEdgeId e : enc) {
+    if (!splittable(e)) {
+      why = Reason::Protected;
+      continue;
+    }
+    if (refuse_split(e, ev)) {
+      if (why == Reason::None) why = Reason::SmallAngle;
+      continue;
+    }
+    d.segments.push_back({tv_[e], tv_[next_edge(e)]});
+  }
+  if (d.segments.empty()) {
+    d.kind = Decision::Skip;
+    d.reason = why == Reason::None ? Reason::Precision : why;
+  } else {
+    d.kind = Decision::Split;
+  }
+}
+
+// ===========================================================================
+// Mesh updates
+
+VertexId Refiner::new_vertex(const Point& p, std::uint32_t seg, int marker) {
+  const auto v = static_cast<VertexId>(pts_.size());
+  pts_.push_back(p);
+  ve_.push_back(kNone);
+  seg_of_.push_back(seg);
+  if (!m_.vertex_markers().empty()) m_.vertex_markers().push_back(marker);
+  const std::size_t na = m_.num_vertex_attributes();
+  if (na > 0) m_.vertex_attributes().resize(m_.vertex_attributes().size() + na, 0.0);
+  ++st_.steiner_points;
+  return v;
+}
+
+// Slot for fan triangle i of `fan` triangles: the cavity's slots first, then new ones.
+TriId Refiner::take_slot(std::size_t i, std::size_t /*fan*/, VertexId v) {
+  if (i < cav_.size()) return cav_[i];
+  const TriId t = m_.add_triangle(v, v, v);  // resizes every per-triangle array
+  const std::size_t na = m_.num_triangle_attributes();
+  if (na > 0) {
+    std::vector<double>& at = m_.triangle_attributes();
+    for (std::size_t k = 0; k < na; ++k) at[t * na + k] = at[cav_[0] * na + k];
+  }
+  return t;
+}
+
+// Interpolated attributes for a new vertex: barycentric in the seed triangle.
+static void interpolate_attributes(Mesh& m, VertexId v, const VertexId (&tri)[3], const Point& p) {
+  const std::size_t na = m.num_vertex_attributes();
+  if (na == 0) return;
+  const Point& a = m.point(tri[0]);
+  const Point& b = m.point(tri[1]);
+  const Point& c = m.point(tri[2]);
+  const double det = (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
+  double wb = det != 0 ? ((p.x - a.x) * (c.y - a.y) - (p.y - a.y) * (c.x - a.x)) / det : 0.0;
+  double wc = det != 0 ? ((b.x - a.x) * (p.y - a.y) - (b.y - a.y) * (p.x - a.x)) / det : 0.0;
+  double wa = 1.0 - wb - wc;
+  std::vector<double>& at = m.vertex_attributes();
+  for (std::size_t k = 0; k < na; ++k)
+    at[v * na + k] = wa * at[tri[0] * na + k] + wb * at[tri[1] * na + k] + wc * at[tri[2] * na + k];
+}
+
+// Inserts c, whose cavity is in cav_/bnd_, as a fan of triangles.
+void Refiner::insert_interior(const Point& c, TriId seed) {
+  const VertexId seed_v[3] = {tv_[3 * seed], tv_[3 * seed + 1], tv_[3 * seed + 2]};
+  const VertexId v = new_vertex(c, kNone, 0);
+  interpolate_attributes(m_, v, seed_v, c);
+  ++st_.interior_points;
+  const std::size_t n = bnd_.size();
+  fan_.resize(n);
+  for (std::size_t i = cav_.size(); i < n; ++i) fan_[i] = take_slot(i, n, v);
+  for (std::size_t i = 0; i < cav_.size(); ++i) fan_[i] = cav_[i];
+  // Vertices whose out-edge lies in the cavity get the fan's outer edge.
+  for (std::size_t i = 0; i < n; ++i) {
+    const HalfEdgeId oe = ve_[bnd_[i].a];
+    if (oe == kNone || std::find(cav_.begin(), cav_.end(), tri_of(oe)) != cav_.end()) ve_[bnd_[i].a] = 3 * fan_[i] + 1;
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    const TriId t = fan_[i];
+    const HalfEdgeId e = 3 * t;
+    const BoundaryEdge& b = bnd_[i];
+    tv_[e] = v;
+    tv_[e + 1] = b.a;
+    tv_[e + 2] = b.b;
+    tw_[e + 1] = b.outer;
+    if (b.outer != kNone) tw_[b.outer] = e + 1;
+    const HalfEdgeId nxt = 3 * fan_[i + 1 == n ? 0 : i + 1];
+    tw_[e + 2] = nxt;
+    tw_[nxt] = e + 2;
+    fl_[e] = 0;
+    fl_[e + 1] = b.flags;
+    fl_[e + 2] = 0;
+    if (has_markers_) {
+      mk_[e] = 0;
+      mk_[e + 1] = b.marker;
+      mk_[e + 2] = 0;
+    }
+    if (carry_bounds_) m_.set_triangle_area_bound(t, b.area_bound);
+  }
+  ve_[v] = 3 * fan_[0];
+  for (std::size_t i = 0; i < n; ++i) {
+    consider(fan_[i]);
+    if (bnd_[i].flags & kConstrained) check_encroached(3 * fan_[i] + 1, v);
+  }
+}
+
+// Splits the constrained edge e = (a -> b) at its split point.
+void Refiner::split_segment(HalfEdgeId e) {
+  const VertexId a = tv_[e], b = tv_[next_edge(e)];
+  const Point mp = split_point(a, b);
+  const int marker = has_markers_ ? mk_[e] : 0;
+  const std::uint8_t flags = fl_[e];
+  const bool boundary = tw_[e] == kNone;
+  if (!split_cavity(e, mp)) {
+    // The split point is off the segment's line by rounding and some
+    // neighbouring triangle is too flat to take it: leave this segment.
+    ++st_.small_angle_skips;  // counted with the refusals; it is rare
+    return;
+  }
+  const std::uint32_t seg = a >= n_input_ ? seg_of_[a] : (b >= n_input_ ? seg_of_[b] : input_segment(a, b));
+  int vmarker = marker != 0 ? marker : (boundary ? 1 : 0);
+  const VertexId v = new_vertex(mp, seg, vmarker);
+  {
+    const std::size_t na = m_.num_vertex_attributes();
+    if (na > 0) {
+      std::vector<double>& at = m_.vertex_attributes();
+      const double la = std::sqrt(dist2(mp, pts_[a])), lb = std::sqrt(dist2(mp, pts_[b]));
+      const double wa = la + lb > 0 ? lb / (la + lb) : 0.5;
+      for (std::size_t k = 0; k < na; ++k) at[v * na + k] = wa * at[a * na + k] + (1 - wa) * at[b * na + k];
+    }
+  }
+  ++st_.segment_splits;
+  const std::size_t n = bnd_.size();
+  const std::size_t n1 = side_split_;  // side one: boundary edges [0, n1), b ... a
+  fan_.resize(n);
+  // Slots: side one uses its cavity slots first; new slots fill up as needed.
+  // Any assignment works as long as every cavity slot is reused.
+  for (std::size_t i = 0; i < n; ++i) fan_[i] = i < cav_.size() ? cav_[i] : kNone;
+  for (std::size_t i = cav_.size(); i < n; ++i) fan_[i] = take_slot(i, n, v);
+  for (std::size_t i = 0; i < n; ++i) {
+    const HalfEdgeId oe = ve_[bnd_[i].a];
+    if (oe == kNone || std::find(cav_.begin(), cav_.end(), tri_of(oe)) != cav_.end()) ve_[bnd_[i].a] = 3 * fan_[i] + 1;
+  }
+  if (boundary) {
+    const HalfEdgeId oe = ve_[a];
+    if (oe == kNone || std::find(cav_.begin(), cav_.end(), tri_of(oe)) != cav_.end()) ve_[a] = 3 * fan_[n1 - 1] + 2;
+  }
+  auto write = [&](std::size_t i) {
+    const TriId t = fan_[i];
+    const HalfEdgeId f = 3 * t;
+    const BoundaryEdge& bd = bnd_[i];
+    tv_[f] = v;
+    tv_[f + 1] = bd.a;
+    tv_[f + 2] = bd.b;
+    tw_[f + 1] = bd.outer;
+    if (bd.outer != kNone) tw_[bd.outer] = f + 1;
+    fl_[f] = 0;
+    fl_[f + 1] = bd.flags;
+    fl_[f + 2] = 0;
+    if (has_markers_) {
+      mk_[f] = 0;
+      mk_[f + 1] = bd.marker;
+      mk_[f + 2] = 0;
+    }
+    if (carry_bounds_) m_.set_triangle_area_bound(t, bd.area_bound);
+  };
+  for (std::size_t i = 0; i < n; ++i) write(i);
+  auto chain = [&](std::size_t lo, std::size_t hi) {
+    for (std::size_t i = lo; i + 1 < hi; ++i) {
+      tw_[3 * fan_[i] + 2] = 3 * fan_[i + 1];
+      tw_[3 * fan_[i + 1]] = 3 * fan_[i] + 2;
+    }
+  };
+  chain(0, n1);
+  chain(n1, n);
+  auto seg_edge = [&](HalfEdgeId h) {
+    fl_[h] = flags;
+    if (has_markers_) mk_[h] = marker;
+  };
+  const HalfEdgeId mb1 = 3 * fan_[0], am1 = 3 * fan_[n1 - 1] + 2;  // m->b, a->m on side one
+  seg_edge(mb1);
+  seg_edge(am1);
+  if (boundary) {
+    tw_[mb1] = kNone;
+    tw_[am1] = kNone;
+  } else {
+    const HalfEdgeId ma2 = 3 * fan_[n1], bm2 = 3 * fan_[n - 1] + 2;  // m->a, b->m on side two
+    seg_edge(ma2);
+    seg_edge(bm2);
+    tw_[am1] = ma2;
+    tw_[ma2] = am1;
+    tw_[mb1] = bm2;
+    tw_[bm2] = mb1;
+  }
+  ve_[v] = mb1;
+  for (std::size_t i = 0; i < n; ++i) {
+    consider(fan_[i]);
+    if (bnd_[i].flags & kConstrained) check_encroached(3 * fan_[i] + 1, v);
+  }
+  // The two new subsegments against the apexes next to them.
+  check_encroached(mb1, tv_[prev_edge(mb1)]);
+  check_encroached(am1, tv_[prev_edge(am1)]);
+  if (!boundary) {
+    const HalfEdgeId ma2 = tw_[am1], bm2 = tw_[mb1];
+    check_encroached(ma2, tv_[prev_edge(ma2)]);
+    check_encroached(bm2, tv_[prev_edge(bm2)]);
+  }
+}
+
+bool Refiner::budget_left() {
+  if (st_.steiner_points >= budget_) {
+    st_.budget_exhausted = true;
+    stopped_ = true;
+    return false;
+  }
+  return true;
+}
+
+// ===========================================================================
+// Driver
+
+void Refiner::run() {
+  start_ = Clock::now();
+  setup();
+  const std::size_t nt = tv_.size() / 3;
+  for (HalfEdgeId e = 0; e < tv_.size(); ++e)
+    if ((fl_[e] & kConstrained) && (tw_[e] == kNone || tw_[e] > e) && encroached(e) && splittable(e))
+      encroached_.push_back({tv_[e], tv_[next_edge(e)]});
+  for (TriId t = 0; t < nt; ++t) consider(t);
+  const bool timed = opt_.time_limit_seconds > 0;
+  while (!stopped_) {
+    if (timed && (++iterations_ & 255) == 0 &&
+        std::chrono::duration<double>(Clock::now() - start_).count() > opt_.time_limit_seconds) {
+      st_.time_exhausted = true;
+      break;
+    }
+    if (!encroached_.empty()) {
+      const auto [a, b] = encroached_.back();
+      encroached_.pop_back();
+      const HalfEdgeId e = m_.find_edge(a, b);
+      if (e == kNone || !(fl_[e] & kConstrained) || !encroached(e) || !splittable(e)) continue;
+      if (!budget_left()) break;
+      split_segment(e);
+      continue;
+    }
+    if (queue_.empty()) break;
+    st_.peak_queue = std::max(st_.peak_queue, queue_.size());
+    const QueueEntry q = queue_.pop();
+    if (!alive(q)) continue;
+    decide(q.t, decision_);
+    switch (decision_.kind) {
+      case Decision::Skip:
+        if (decision_.reason == Reason::SmallAngle) ++st_.small_angle_skips;
+        break;
+      case Decision::Insert:
+        if (!budget_left()) break;
+        if (decision_.offcenter) ++st_.offcenters;
+        insert_interior(decision_.c, cav_[0]);
+        break;
+      case Decision::Split: {
+        ++st_.rejected_points;
+        for (const auto& [a, b] : decision_.segments) {
+          const HalfEdgeId e = m_.find_edge(a, b);
+          if (e == kNone) continue;
+          if (!budget_left()) break;
+          split_segment(e);
+        }
+        if (alive(q)) consider(q.t);
+        break;
+      }
+    }
+  }
+  finish();
+}
+
+void Refiner::finish() {
+  st_.complete = !st_.budget_exhausted && !st_.time_exhausted;
+  // Classify what is left: ask the decision procedure (read-only) why.
+  const std::size_t nt = tv_.size() / 3;
+  encroached_.clear();
+  for (TriId t = 0; t < nt; ++t) {
+    const Eval ev = eval(t);
+    if (ev.large) ++st_.too_large;
+    if (!ev.skinny) continue;
+    ++st_.below_bound;
+    decide(t, decision_);
+    if (decision_.kind == Decision::Skip) {
+      switch (decision_.reason) {
+        case Reason::SmallAngle: ++st_.below_small_input_angle; break;
+        case Reason::Protected: ++st_.below_segment_protected; break;
+        case Reason::Budget: ++st_.below_budget; break;
+        default: ++st_.below_precision; break;
+      }
+    } else {
+      ++st_.below_budget;
+    }
+  }
+  st_.seconds = std::chrono::duration<double>(Clock::now() - start_).count();
+}
+
+}  // namespace
+
+std::string RefineStats::summary() const {
+  std::ostringstream out;
+  out << "refinement " << (complete ? "complete" : "stopped early");
+  if (budget_exhausted) out << " (Steiner budget reached)";
+  if (time_exhausted) out << " (time limit reached)";
+  out << ": " << steiner_points << " Steiner points (" << segment_splits << " on segments, " << interior_points
+      << " inside, " << offcenters << " off-centres), " << rejected_points << " encroaching points rejected";
+  if (below_bound > 0) {
+    out << "; " << below_bound << " triangles below " << min_angle_deg << "°:";
+    if (below_small_input_angle) out << " " << below_small_input_angle << " at input angles < 60°";
+    if (below_segment_protected) out << " " << below_segment_protected << " need a split -Y forbids";
+    if (below_budget) out << " " << below_budget << " left by the budget";
+    if (below_precision) out << " " << below_precision << " at the precision of doubles";
+  }
+  if (too_large > 0) out << "; " << too_large << " triangles above their size bound";
+  return out.str();
+}
+
+RefineStats refine(Mesh& mesh, const RefineOptions& options) {
+  RefineStats stats;
+  if (!mesh.compacted()) mesh.compact();
+  stats.input_vertices = mesh.num_vertices();
+  stats.min_angle_deg = options.min_angle_deg;
+  if (mesh.num_triangles() == 0) return stats;
+  Refiner(mesh, options, stats).run();
+  return stats;
+}
+
+std::string_view to_string(SteinerRule r) {
+  return r == SteinerRule::Offcenter ? "offcenter" : "circumcenter";
+}
+
+std::optional<SteinerRule> parse_steiner_rule(std::string_view name) {
+  if (name == "offcenter" || name == "off-center" || name == "offcentre") return SteinerRule::Offcenter;
+  if (name == "circumcenter" || name == "circumcentre") return SteinerRule::Circumcenter;
+  return std::nullopt;
+}
+
+std::string_view to_string(EncroachmentRule r) {
+  return r == EncroachmentRule::DiametralCircle ? "circle" : "lens";
+}
+
+std::optional<EncroachmentRule> parse_encroachment_rule(std::string_view name) {
+  if (name == "circle") return EncroachmentRule::DiametralCircle;
+  if (name == "lens") return EncroachmentRule::DiametralLens;
+  return std::nullopt;
+}
+
+SecondOrderNodes second_order_nodes(const Mesh& mesh) {
+  SecondOrderNodes out;
+  const std::size_t slots = mesh.num_triangle_slots();
+  out.tri_nodes.assign(3 * slots, kNone);
+  const auto base = static_cast<VertexId>(mesh.num_vertices());
+  for (TriId t = 0; t < slots; ++t) {
+    if (!mesh.is_real(t)) continue;
+    for (int i = 0; i < 3; ++i) {
+      const HalfEdgeId e = 3 * t + i;
+      // Node opposite vertex k lies on edge (k+1 -> k+2), i.e. half-edge 3t + (k+1)%3.
+      const int k = (i + 2) % 3;
+      if (out.tri_nodes[3 * t + k] != kNone) continue;
+      const VertexId id = base + static_cast<VertexId>(out.points.size());
+      const Point& a = mesh.point(mesh.origin(e));
+      const Point& b = mesh.point(mesh.dest(e));
+      out.points.push_back({0.5 * (a.x + b.x), 0.5 * (a.y + b.y)});
+      const HalfEdgeId f = mesh.twin(e);
+      int marker = 0;
+      if (mesh.is_constrained(e) || f == kNone) marker = mesh.edge_marker(e) != 0 ? mesh.edge_marker(e) : (f == kNone ? 1 : 0);
+      out.markers.push_back(marker);
+      out.tri_nodes[3 * t + k] = id;
+      if (f != kNone && mesh.is_real(tri_of(f))) {
+        const TriId u = tri_of(f);
+        const int ku = static_cast<int>((f % 3 + 2) % 3);
+        out.tri_nodes[3 * u + ku] = id;
+      }
+    }
+  }
+  return out;
+}
+
+}  // namespace deltamesh

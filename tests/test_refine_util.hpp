@@ -1,0 +1,100 @@
+// Helpers shared by the refinement tests (test_refine*.cpp).
+#pragma once
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <utility>
+#include <vector>
+
+#include "deltamesh/delaunay.hpp"
+#include "deltamesh/mesh.hpp"
+#include "deltamesh/predicates.hpp"
+#include "deltamesh/validate.hpp"
+
+namespace deltamesh::test {
+
+// A carved convex domain: the Delaunay triangulation of `points` with its
+// hull edges as segments (marker 1), compacted.
+inline Mesh convex_domain(const std::vector<Point>& points, int marker = 1) {
+  Mesh mesh = delaunay(points, {.keep_ghosts = true});
+  for (HalfEdgeId e = 0; e < mesh.triangle_vertices().size(); ++e) {
+    if (mesh.is_dead(tri_of(e)) || mesh.is_ghost(tri_of(e))) continue;
+    const HalfEdgeId f = mesh.twin(e);
+    if (f != kNone && mesh.is_ghost(tri_of(f))) mesh.constrain_edge(e, marker);
+  }
+  mesh.compact();
+  return mesh;
+}
+
+// The constrained edges of a mesh as vertex pairs (each once).
+inline std::vector<std::pair<VertexId, VertexId>> boundary_segments(const Mesh& mesh) {
+  std::vector<std::pair<VertexId, VertexId>> s;
+  for (HalfEdgeId e = 0; e < mesh.triangle_vertices().size(); ++e) {
+    if (!mesh.is_real(tri_of(e)) || !mesh.is_constrained(e)) continue;
+    const HalfEdgeId f = mesh.twin(e);
+    if (f != kNone && f < e) continue;
+    s.push_back({mesh.origin(e), mesh.dest(e)});
+  }
+  return s;
+}
+
+inline double min_angle_deg(const Mesh& mesh) {
+  double lo = 180;
+  for (TriId t = 0; t < mesh.num_triangle_slots(); ++t) {
+    if (!mesh.is_real(t)) continue;
+    const auto v = mesh.triangle(t);
+    for (int i = 0; i < 3; ++i) {
+      const Point& a = mesh.point(v[i]);
+      const Point& b = mesh.point(v[(i + 1) % 3]);
+      const Point& c = mesh.point(v[(i + 2) % 3]);
+      const double ux = b.x - a.x, uy = b.y - a.y, wx = c.x - a.x, wy = c.y - a.y;
+      lo = std::min(lo, std::atan2(std::fabs(ux * wy - uy * wx), ux * wx + uy * wy) * 180 / std::numbers::pi);
+    }
+  }
+  return lo;
+}
+
+inline void expect_valid(const Mesh& mesh, bool convex) {
+  CheckOptions co;
+  co.convex_hull = convex;
+  const CheckReport rep = check(mesh, co);
+  EXPECT_TRUE(rep.ok()) << rep.summary();
+}
+
+// Every input segment (a, b) is still a chain of constrained edges from a to
+// b whose vertices lie on the segment (up to rounding of split points).
+inline bool segments_conform(const Mesh& mesh, const std::vector<std::pair<VertexId, VertexId>>& segs) {
+  for (const auto& [a, b] : segs) {
+    const Point& pa = mesh.point(a);
+    const Point& pb = mesh.point(b);
+    const double dx = pb.x - pa.x, dy = pb.y - pa.y, len2 = dx * dx + dy * dy;
+    VertexId v = a;
+    double progress = 0;
+    for (std::size_t steps = 0; v != b; ++steps) {
+      if (steps > mesh.num_vertices()) return false;
+      VertexId next = kNone;
+      mesh.for_each_out_edge(v, [&](HalfEdgeId e) {
+        if (!mesh.is_constrained(e)) return true;
+        const Point& w = mesh.point(mesh.dest(e));
+        const double t = ((w.x - pa.x) * dx + (w.y - pa.y) * dy) / len2;
+        const double off = std::fabs((w.x - pa.x) * dy - (w.y - pa.y) * dx) / len2;
+        if (t > progress && off < 1e-9) {
+          next = mesh.dest(e);
+          return false;
+        }
+        return true;
+      });
+      // Also look at the constrained edge ending at v on the boundary (the
+      // rotation from the most clockwise edge misses the incoming one).
+      if (next == kNone) return false;
+      const Point& w = mesh.point(next);
+      progress = ((w.x - pa.x) * dx + (w.y - pa.y) * dy) / len2;
+      v = next;
+    }
+  }
+  return true;
+}
+
+}  // namespace deltamesh::test
