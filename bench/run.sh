@@ -88,7 +88,8 @@ fi
 
 # ---- summary ----------------------------------------------------------------------
 echo
-echo "== summary (medians; ratio = CGAL time / deltamesh time, > 1: deltamesh faster)"
+echo "== summary (medians; ratio = CGAL wall time / deltamesh wall time, > 1: deltamesh faster;"
+echo "   cpu ratio: the same with CPU times, steadier on a busy machine)"
 {
   # Google Benchmark writes one "key": value per line.
   awk '
@@ -103,18 +104,19 @@ echo "== summary (medians; ratio = CGAL time / deltamesh time, > 1: deltamesh fa
       if (agg == "median" && !err) {
         split(run, p, "/"); c = p[3]
         if (!(c in seen)) { seen[c] = 1; order[++n] = c }
-        T[c, p[2]] = t; US[c, p[2]] = us; BT[c, p[2]] = bt
-        if (t > 1.15 * cpu) busy = 1
+        T[c, p[2]] = t; CPU[c, p[2]] = cpu; US[c, p[2]] = us; BT[c, p[2]] = bt
+        if (t + 0 > 1.15 * cpu) busy = 1
       }
       run = agg = t = us = bt = cpu = ""; err = 0
     }
     function f(x, fmt) { return x == "" ? "-" : sprintf(fmt, x) }
     END {
-      printf "%-16s %12s %12s %7s %10s %10s %9s %9s\n", "case", "deltamesh", "CGAL", "ratio", "us/pt dm", "us/pt CGAL", "B/tri dm", "B/tri CGAL"
+      printf "%-16s %12s %12s %7s %9s %10s %10s %9s %9s\n", "case", "deltamesh", "CGAL", "ratio", "cpu ratio", "us/pt dm", "us/pt CGAL", "B/tri dm", "B/tri CGAL"
       for (i = 1; i <= n; ++i) {
-        c = order[i]; d = T[c, "deltamesh"]; g = T[c, "cgal"]
-        r = (d != "" && g != "" && d > 0) ? sprintf("%.2f", g / d) : "-"
-        printf "%-16s %12s %12s %7s %10s %10s %9s %9s\n", c, f(d, "%.1f ms"), f(g, "%.1f ms"), r,
+        c = order[i]; d = T[c, "deltamesh"]; g = T[c, "cgal"]; dc = CPU[c, "deltamesh"]; gc = CPU[c, "cgal"]
+        r = (d != "" && g != "" && d + 0 > 0) ? sprintf("%.2f", g / d) : "-"
+        rc = (dc != "" && gc != "" && dc + 0 > 0) ? sprintf("%.2f", gc / dc) : "-"
+        printf "%-16s %12s %12s %7s %9s %10s %10s %9s %9s\n", c, f(d, "%.1f ms"), f(g, "%.1f ms"), r, rc,
           f(US[c, "deltamesh"], "%.3f"), f(US[c, "cgal"], "%.3f"), f(BT[c, "deltamesh"], "%.1f"), f(BT[c, "cgal"], "%.1f")
       }
       if (busy) print "warning: wall time exceeds CPU time by over 15% in some case: the machine was busy, figures are inflated" > "/dev/stderr"
@@ -122,7 +124,7 @@ echo "== summary (medians; ratio = CGAL time / deltamesh time, > 1: deltamesh fa
   for w in "${whole[@]}"; do
     IFS='|' read -r name dm cg label <<<"$w"
     awk -v c="$name" -v l="$label" -v d="$dm" -v g="$cg" 'BEGIN {
-      r = (g != "nan" && d > 0) ? sprintf("%.2f", g / d) : "-"
-      printf "%-16s %12s %12s %7s   (whole process, 10^6 uniform: %s)\n", c, sprintf("%.3f s", d), (g == "nan" ? "-" : sprintf("%.3f s", g)), r, l }'
+      r = (g != "nan" && d + 0 > 0) ? sprintf("%.2f", g / d) : "-"
+      printf "%-16s %12s %12s %7s %9s   (whole process, 10^6 uniform: %s)\n", c, sprintf("%.3f s", d), (g == "nan" ? "-" : sprintf("%.3f s", g)), r, "", l }'
   done
 }
