@@ -119,7 +119,7 @@ echo "   cpu ratio: the same with CPU times, steadier on a busy machine)"
         printf "%-16s %12s %12s %7s %9s %10s %10s %9s %9s\n", c, f(d, "%.1f ms"), f(g, "%.1f ms"), r, rc,
           f(US[c, "deltamesh"], "%.3f"), f(US[c, "cgal"], "%.3f"), f(BT[c, "deltamesh"], "%.1f"), f(BT[c, "cgal"], "%.1f")
       }
-      if (busy) print "warning: wall time exceeds CPU time by over 15% in some case: the machine was busy, figures are inflated" > "/dev/stderr"
+      if (busy) print "warning: wall time exceeds CPU time by over 15% in some case: the machine was busy, figures are inflated"
     }' "$json"
   for w in "${whole[@]}"; do
     IFS='|' read -r name dm cg label <<<"$w"
