@@ -98,3 +98,43 @@ inline bool segments_conform(const Mesh& mesh, const std::vector<std::pair<Verte
 }
 
 }  // namespace deltamesh::test
+
+namespace deltamesh::test {
+
+// A carved domain for a PSLG whose segments are all Delaunay edges of its
+// vertices (no CDT needed): Delaunay triangulation, segments constrained,
+// triangles reachable from the hole points without crossing a segment
+// removed, compacted. Returns false when a segment is not a Delaunay edge.
+inline bool delaunay_domain(const std::vector<Point>& points,
+                            const std::vector<std::pair<VertexId, VertexId>>& segments,
+                            const std::vector<Point>& holes, Mesh& out, int marker = 1) {
+  Mesh mesh = delaunay(points, {.keep_ghosts = true});
+  for (const auto& [a, b] : segments) {
+    const HalfEdgeId e = mesh.find_edge(a, b);
+    if (e == kNone) return false;
+    mesh.constrain_edge(e, marker);
+  }
+  std::vector<TriId> stack;
+  for (const Point& h : holes) {
+    const Location loc = mesh.locate(h);
+    if (loc.tri != kNone && loc.kind == Location::Kind::InTriangle) stack.push_back(loc.tri);
+  }
+  std::vector<char> gone(mesh.num_triangle_slots(), 0);
+  while (!stack.empty()) {
+    const TriId t = stack.back();
+    stack.pop_back();
+    if (gone[t] || mesh.is_ghost(t)) continue;
+    gone[t] = 1;
+    for (int i = 0; i < 3; ++i) {
+      const HalfEdgeId e = 3 * t + i;
+      if (!mesh.is_constrained(e) && mesh.twin(e) != kNone) stack.push_back(tri_of(mesh.twin(e)));
+    }
+  }
+  for (TriId t = 0; t < gone.size(); ++t)
+    if (gone[t]) mesh.remove_triangle(t);
+  mesh.compact();
+  out = std::move(mesh);
+  return true;
+}
+
+}  // namespace deltamesh::test

@@ -95,6 +95,7 @@ class BadQueue {
     buckets_[key].push_back(e);
     bits_[key >> 6] |= std::uint64_t{1} << (key & 63);
     ++size_;
+    ++skinny_;
   }
   void push_large(const QueueEntry& e) {
     large_.push_back(e);
@@ -104,6 +105,12 @@ class BadQueue {
   std::size_t size() const { return size_; }
   QueueEntry pop() {
     --size_;
+    if (skinny_ == 0) {
+      const QueueEntry e = large_.back();
+      large_.pop_back();
+      return e;
+    }
+    --skinny_;
     for (int w = 0; w < kBuckets / 64; ++w) {
       if (bits_[w] == 0) continue;
       const int key = 64 * w + std::countr_zero(bits_[w]);
@@ -129,6 +136,7 @@ class BadQueue {
   std::array<std::uint64_t, kBuckets / 64> bits_{};
   std::vector<QueueEntry> large_;
   std::size_t size_ = 0;
+  std::size_t skinny_ = 0;
 };
 
 struct Eval {
@@ -262,6 +270,7 @@ class Refiner {
   std::size_t side_split_ = 0;  // split cavities: boundary edges of side one
   Decision decision_;
 
+  std::size_t appended_ = 0;  // triangles appended without Mesh::add_triangle
   Clock::time_point start_;
   std::size_t iterations_ = 0;
   bool stopped_ = false;
@@ -430,8 +439,8 @@ Eval Refiner::eval(TriId t) const {
   ev.shortest2 = lo;
   // The smallest angle faces the shortest edge: sin = cross / (|o1| |o2|).
   const double den = o1 * o2;
-  ev.sin2 = den > 0 ? cross * cross / den : 0.0;
-  ev.skinny = ev.sin2 < sin2_bound_;
+  ev.skinny = cross * cross < sin2_bound_ * den;
+  if (ev.skinny) ev.sin2 = den > 0 ? cross * cross / den : 0.0;
   const double bound = area_bound(t, a, b, c);
   if (bound > 0 && 0.5 * cross > bound) ev.large = true;
   if (opt_.max_edge_at) {
@@ -678,7 +687,12 @@ bool Refiner::cavity(const Point& c, TriId seed) {
   stack_.push_back(3 * seed + 1);
   stack_.push_back(3 * seed);
   if (!grow(c, 0)) return false;
-  return boundary_visible(c, 0, bnd_.size());
+  // A cavity grown through unconstrained (locally Delaunay) edges around a
+  // point inside it is star-shaped (exact incircle); only segments on its
+  // boundary can break that, so only then is every edge checked.
+  for (const BoundaryEdge& b : bnd_)
+    if (b.flags & kConstrained) return boundary_visible(c, 0, bnd_.size());
+  return true;
 }
 
 // Cavity of point m splitting the constrained edge e = (a -> b): side one
@@ -863,6 +877,17 @@ VertexId Refiner::new_vertex(const Point& p, std::uint32_t seg, int marker) {
 // Slot for fan triangle i of `fan` triangles: the cavity's slots first, then new ones.
 TriId Refiner::take_slot(std::size_t i, std::size_t /*fan*/, VertexId v) {
   if (i < cav_.size()) return cav_[i];
+  if (!carry_bounds_ && m_.num_triangle_attributes() == 0) {
+    // The arrays this refinement touches, grown by hand (Mesh::add_triangle
+    // also handles bounds and attributes, at a cost per call).
+    const auto t = static_cast<TriId>(tv_.size() / 3);
+    tv_.resize(tv_.size() + 3, v);
+    tw_.resize(tw_.size() + 3, kNone);
+    fl_.resize(fl_.size() + 3, 0);
+    if (has_markers_) mk_.resize(mk_.size() + 3, 0);
+    ++appended_;
+    return t;
+  }
   const TriId t = m_.add_triangle(v, v, v);  // resizes every per-triangle array
   const std::size_t na = m_.num_triangle_attributes();
   if (na > 0) {
@@ -1102,6 +1127,8 @@ void Refiner::run() {
 }
 
 void Refiner::finish() {
+  m_.set_live_real(m_.live_real() + appended_);
+  appended_ = 0;
   st_.complete = !st_.budget_exhausted && !st_.time_exhausted;
   // Classify what is left: ask the decision procedure (read-only) why.
   const std::size_t nt = tv_.size() / 3;
@@ -1153,6 +1180,9 @@ RefineStats refine(Mesh& mesh, const RefineOptions& options) {
   stats.min_angle_deg = options.min_angle_deg;
   if (mesh.num_triangles() == 0) return stats;
   Refiner(mesh, options, stats).run();
+  // Mesh::add_triangle (used when triangles carry bounds or attributes)
+  // clears the compacted flag; the mesh has no dead or ghost slots.
+  if (!mesh.compacted()) mesh.compact();
   return stats;
 }
 
