@@ -133,22 +133,45 @@ bool TextReader::has_more_data() {
 }
 
 bool TextReader::next_line() {
+  // One pass over the line: skip blank and comment-only lines, then split
+  // the data line into tokens up to its newline or comment.
   tokens_.clear();
-  if (!has_more_data()) return false;
-  const std::size_t end = line_end(pos_);
-  const char* p = text_.data() + pos_;
-  const char* e = text_.data() + end;
-  while (p != e) {
-    while (p != e && is_space(*p)) ++p;
-    if (p == e || *p == '#') break;
-    const char* start = p;
-    while (p != e && !is_space(*p) && *p != '#') ++p;
-    tokens_.emplace_back(start, static_cast<std::size_t>(p - start));
+  const char* const begin = text_.data();
+  const char* const stop = begin + text_.size();
+  const char* p = begin + pos_;
+  while (p < stop) {
+    while (p < stop && is_space(*p)) ++p;
+    if (p == stop) break;
+    if (*p == '\n') {
+      ++p;
+      ++next_line_;
+      continue;
+    }
+    if (*p == '#') {
+      const void* nl = std::memchr(p, '\n', static_cast<std::size_t>(stop - p));
+      if (nl == nullptr) break;
+      p = static_cast<const char*>(nl) + 1;
+      ++next_line_;
+      continue;
+    }
+    // A data line.
+    while (p < stop && *p != '\n') {
+      const char* start = p;
+      while (p < stop && !is_space(*p) && *p != '#' && *p != '\n') ++p;
+      tokens_.emplace_back(start, static_cast<std::size_t>(p - start));
+      while (p < stop && is_space(*p)) ++p;
+      if (p < stop && *p == '#') {
+        const void* nl = std::memchr(p, '\n', static_cast<std::size_t>(stop - p));
+        p = nl == nullptr ? stop : static_cast<const char*>(nl);
+      }
+    }
+    line_ = next_line_;
+    ++next_line_;
+    pos_ = p < stop ? static_cast<std::size_t>(p - begin) + 1 : text_.size();
+    return true;
   }
-  line_ = next_line_;
-  ++next_line_;
-  pos_ = end < text_.size() ? end + 1 : text_.size();
-  return true;
+  pos_ = text_.size();
+  return false;
 }
 
 std::size_t TextReader::last_line() const {
