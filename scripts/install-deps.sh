@@ -2,7 +2,7 @@
 # Installs the Debian packages deltamesh needs, only those that are missing.
 # Usage: scripts/install-deps.sh [core|bench|test-tools]...
 set -euo pipefail
-want=(g++ make cmake libgtest-dev libgmock-dev libbenchmark-dev libgmp-dev libxml2-utils)
+want=(g++ make cmake libgtest-dev libgmock-dev libbenchmark-dev libgmp-dev libxml2-utils gmsh python3-meshio librsvg2-bin)
 for group in "$@"; do
   case "$group" in
     core) ;;
