@@ -2,6 +2,7 @@
 // written. Readers throw ParseError naming file, line and problem. Writers
 // write to a temporary name and rename, so no partial file is ever left.
 #pragma once
+#include <span>
 #include <string>
 #include <vector>
 
@@ -31,15 +32,21 @@ struct TriangleWriteOptions {
   int first_index = 0;        // numbering written (Triangle: the input's; -z forces 0)
   bool write_markers = true;  // boundary markers (-B turns them off)
   bool write_attributes = true;
+  // Holes and regions write_poly lists after the segments (none by default).
+  std::span<const Point> holes;
+  std::span<const RegionSeed> regions;
 };
 
 void write_node(const Mesh& mesh, const std::string& path, const TriangleWriteOptions& opt = {});
 void write_ele(const Mesh& mesh, const std::string& path, const TriangleWriteOptions& opt = {});
-// Every edge once, with a boundary marker (1 on the mesh boundary, 0 inside).
+// Every edge once, with a boundary marker: its segment's marker when nonzero,
+// else 1 on the mesh boundary, else 0 (Triangle's rule).
 void write_edge(const Mesh& mesh, const std::string& path, const TriangleWriteOptions& opt = {});
 // Per triangle its three neighbours, neighbour i opposite vertex i, -1 for none.
 void write_neigh(const Mesh& mesh, const std::string& path, const TriangleWriteOptions& opt = {});
-// Constrained edges (or the boundary when none) as a .poly with no vertices.
+// Constrained edges (or the boundary when none) as a .poly with no vertices
+// (they are in the .node file of the same name), markers as in write_edge,
+// then opt.holes and opt.regions.
 void write_poly(const Mesh& mesh, const std::string& path, const TriangleWriteOptions& opt = {});
 
 }  // namespace deltamesh

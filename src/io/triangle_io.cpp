@@ -276,9 +276,10 @@ bool constrained(const Mesh& m, HalfEdgeId e) {
   return f != kNone && m.is_constrained(f);
 }
 
-// The boundary marker written for an edge: the marker of the segment it
-// belongs to when that is nonzero; otherwise 1 on the mesh boundary or on a
-// constrained edge, 0 elsewhere.
+// The boundary marker written for an edge, by Triangle's documented rule:
+// the marker of the segment it belongs to when that is nonzero; otherwise 1
+// on the mesh boundary (holes included); otherwise 0, for interior segments
+// with marker 0 too.
 int edge_output_marker(const Mesh& m, HalfEdgeId e, bool boundary) {
   int marker = m.edge_marker(e);
   if (marker == 0) {
@@ -286,7 +287,7 @@ int edge_output_marker(const Mesh& m, HalfEdgeId e, bool boundary) {
     if (tw != kNone) marker = m.edge_marker(tw);
   }
   if (marker != 0) return marker;
-  return boundary || constrained(m, e) ? 1 : 0;
+  return boundary ? 1 : 0;
 }
 
 // Output numbering of live real triangles (dead and ghost slots skipped).
@@ -388,8 +389,8 @@ Pslg read_poly(const std::string& path) {
     Segment s;
     s.a = read_vertex_ref(r, 1, g, "segment", id);
     s.b = read_vertex_ref(r, 2, g, "segment", id);
-    if (s.a == s.b)
-      r.fail("segment " + str(id) + " has vertex " + std::string(r.token(1)) + " at both ends");
+    // A segment with the same vertex at both ends is kept: meshing ignores
+    // and counts zero-length segments (with a warning), as real files have them.
     if (seg_markers) s.marker = read_marker(r, 3, "segment", id);
     g.segments.push_back(s);
   }
@@ -629,7 +630,30 @@ void write_poly(const Mesh& mesh, const std::string& path, const TriangleWriteOp
     if (opt.write_markers) out.field_int(edge_output_marker(mesh, e, boundary));
     out.put('\n');
   });
-  out.put("0\n");  // no holes
+  // Holes and regions as given (the input's, for a .poly that describes the
+  // same domain again).
+  out.put_int(static_cast<long long>(opt.holes.size()));
+  out.put('\n');
+  id = opt.first_index;
+  for (const Point& h : opt.holes) {
+    out.put_int(id++);
+    out.field_double(h.x);
+    out.field_double(h.y);
+    out.put('\n');
+  }
+  if (!opt.regions.empty()) {
+    out.put_int(static_cast<long long>(opt.regions.size()));
+    out.put('\n');
+    id = opt.first_index;
+    for (const RegionSeed& r : opt.regions) {
+      out.put_int(id++);
+      out.field_double(r.p.x);
+      out.field_double(r.p.y);
+      out.field_double(r.attribute);
+      out.field_double(r.max_area > 0 ? r.max_area : -1.0);
+      out.put('\n');
+    }
+  }
   out.finish();
 }
 
