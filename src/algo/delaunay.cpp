@@ -36,67 +36,70 @@ void make_first_triangle(Mesh& mesh, VertexId a, VertexId b, VertexId c) {
 }
 
 
+// Local index arithmetic without repeated divisions: the hot loops split a
+// half-edge into (base, i) once and look up the other two.
+constexpr std::uint8_t kNextIndex[3] = {1, 2, 0};
+constexpr std::uint8_t kPrevIndex[3] = {2, 0, 1};
+
 // The bulk builder: the same split + Lawson flips as detail::DelaunayInserter,
-// on the raw arrays and without per-vertex out-edges (compact() rebuilds
+// on raw arrays sized once, without per-vertex out-edges (compact() rebuilds
 // them), because this loop is where a 10^6-point triangulation spends its time.
 class BulkBuilder {
  public:
-  explicit BulkBuilder(Mesh& mesh)
-      : mesh_(mesh), v_(mesh.tri_v_mut()), tw_(mesh.twin_mut()), p_(mesh.points().data()) {
+  BulkBuilder(Mesh& mesh, std::size_t max_triangles)
+      : mesh_(mesh), used_(mesh.tri_v_mut().size()), p_(mesh.points().data()) {
+    mesh.tri_v_mut().resize(3 * max_triangles);
+    mesh.twin_mut().resize(3 * max_triangles);
+    v_ = mesh.tri_v_mut().data();
+    tw_ = mesh.twin_mut().data();
     stack_.reserve(64);
   }
+  ~BulkBuilder() {
+    mesh_.tri_v_mut().resize(used_);
+    mesh_.twin_mut().resize(used_);
+  }
+  BulkBuilder(const BulkBuilder&) = delete;
+  BulkBuilder& operator=(const BulkBuilder&) = delete;
 
   // Inserts vertex v; returns v, or the vertex it coincides with. `hint`
-  // is updated to a triangle near v for the next walk.
+  // (a real triangle) is updated to a triangle near v for the next walk.
   VertexId insert(VertexId v, TriId& hint) {
     const Point& p = p_[v];
-    TriId t = hint;
-    HalfEdgeId from = kNone;  // the half-edge we entered t through
+    // Visibility walk. In a Delaunay triangulation it cannot cycle, so the
+    // edges are tried in a fixed order; the entry edge is never an exit.
+    HalfEdgeId base = 3 * hint;
+    const double o0 = orient2d(p_[v_[base]], p_[v_[base + 1]], p);
+    const double o1 = orient2d(p_[v_[base + 1]], p_[v_[base + 2]], p);
+    const double o2 = orient2d(p_[v_[base + 2]], p_[v_[base]], p);
+    HalfEdgeId exit = o0 < 0 ? base : o1 < 0 ? base + 1 : o2 < 0 ? base + 2 : kNone;
+    if (exit == kNone) return insert_in_closed(v, base, o0, o1, o2, hint);
     for (;;) {
-      const HalfEdgeId base = 3 * t;
-      // Start after the entry edge: it cannot be an exit.
-      const HalfEdgeId first = from == kNone ? base : next_edge(from);
-      HalfEdgeId exit = kNone, zero = kNone;
-      int zeros = 0;
-      HalfEdgeId e = first;
-      for (int k = 0; k < 3; ++k, e = next_edge(e)) {
-        if (e == from) continue;
-        const double o = orient2d(p_[v_[e]], p_[v_[next_edge(e)]], p);
-        if (o < 0) {
-          exit = e;
-          break;
-        }
-        if (o == 0) {
-          ++zeros;
-          zero = e;
-        }
-      }
-      if (exit == kNone) {
-        if (zeros == 2) {  // on a vertex: the one both zero edges share
-          for (int i = 0; i < 3; ++i)
-            if (p_[v_[base + i]] == p) {
-              hint = t;
-              return v_[base + i];
-            }
-        }
-        if (zeros >= 1) {
-          const HalfEdgeId f = tw_[zero];
-          const HalfEdgeId g0 = mesh_.split_edge(zero, v);
-          push(prev_edge(zero));
-          push(g0 + 1);
-          push(prev_edge(f));
-          push(next_edge(tw_[zero]));
-        } else {
-          split(t, v);
-        }
+      const HalfEdgeId from = tw_[exit];
+      const unsigned i = from % 3;
+      base = from - i;
+      const HalfEdgeId e1 = base + kNextIndex[i], e2 = base + kPrevIndex[i];
+      const VertexId va = v_[from], vb = v_[e1], vc = v_[e2];
+      if (vc == kInfinite || va == kInfinite || vb == kInfinite) {
+        // Crossed a hull edge: p sees it from outside; the ghost takes p.
+        split(tri_of(from), v);
         break;
       }
-      from = tw_[exit];
-      t = tri_of(from);
-      if (is_ghost(t)) {
-        split(t, v);
-        break;
+      const double oa = orient2d(p_[vb], p_[vc], p);  // edge e1
+      if (oa < 0) {
+        exit = e1;
+        continue;
       }
+      const double ob = orient2d(p_[vc], p_[va], p);  // edge e2
+      if (ob < 0) {
+        exit = e2;
+        continue;
+      }
+      // Inside the closed triangle; the entry edge has p strictly left.
+      double o[3];
+      o[i] = 1.0;
+      o[kNextIndex[i]] = oa;
+      o[kPrevIndex[i]] = ob;
+      return insert_in_closed(v, base, o[0], o[1], o[2], hint);
     }
     legalize(v);
     hint = real_near(last_);
@@ -104,15 +107,30 @@ class BulkBuilder {
   }
 
  private:
-  bool is_ghost(TriId t) const {
-    return v_[3 * t] == kInfinite || v_[3 * t + 1] == kInfinite || v_[3 * t + 2] == kInfinite;
+  // p lies in the closed real triangle at `base`, with orientations o0..o2
+  // against its three edges (none negative).
+  VertexId insert_in_closed(VertexId v, HalfEdgeId base, double o0, double o1, double o2, TriId& hint) {
+    const int zeros = (o0 == 0) + (o1 == 0) + (o2 == 0);
+    if (zeros == 2) {  // on the vertex both zero edges share
+      const unsigned k = o0 != 0 ? 2 : o1 != 0 ? 0 : 1;
+      hint = tri_of(base);
+      return v_[base + k];
+    }
+    if (zeros == 1)
+      split_edge(o0 == 0 ? base : o1 == 0 ? base + 1 : base + 2, v);
+    else
+      split(tri_of(base), v);
+    legalize(v);
+    hint = real_near(last_);
+    return v;
   }
+
   void push(HalfEdgeId e) { stack_.push_back(e); }
   // t itself, or the real triangle across a ghost's hull edge.
   TriId real_near(TriId t) const {
     for (int i = 0; i < 3; ++i) {
       const HalfEdgeId e = 3 * t + i;
-      if (v_[e] == kInfinite) return tri_of(tw_[next_edge(e)]);
+      if (v_[e] == kInfinite) return tri_of(tw_[3 * t + kNextIndex[i]]);
     }
     return t;
   }
@@ -122,9 +140,20 @@ class BulkBuilder {
     const HalfEdgeId e0 = 3 * t, e1 = e0 + 1, e2 = e0 + 2;
     const VertexId a = v_[e0], b = v_[e1], c = v_[e2];
     const HalfEdgeId tw_bc = tw_[e1], tw_ca = tw_[e2];
-    const HalfEdgeId g0 = static_cast<HalfEdgeId>(v_.size()), h0 = g0 + 3;
-    v_.insert(v_.end(), {b, c, v, c, a, v});
-    tw_.insert(tw_.end(), {tw_bc, h0 + 2, e1, tw_ca, e2, g0 + 1});
+    const HalfEdgeId g0 = static_cast<HalfEdgeId>(used_), h0 = g0 + 3;
+    used_ += 6;
+    v_[g0] = b;
+    v_[g0 + 1] = c;
+    v_[g0 + 2] = v;
+    v_[h0] = c;
+    v_[h0 + 1] = a;
+    v_[h0 + 2] = v;
+    tw_[g0] = tw_bc;
+    tw_[g0 + 1] = h0 + 2;
+    tw_[g0 + 2] = e1;
+    tw_[h0] = tw_ca;
+    tw_[h0 + 1] = e2;
+    tw_[h0 + 2] = g0 + 1;
     tw_[tw_bc] = g0;
     tw_[tw_ca] = h0;
     v_[e2] = v;
@@ -135,27 +164,42 @@ class BulkBuilder {
     push(h0);
   }
 
-  void flip(HalfEdgeId e, HalfEdgeId f) {
-    const HalfEdgeId e1 = next_edge(e), e2 = prev_edge(e);
-    const HalfEdgeId f1 = next_edge(f), f2 = prev_edge(f);
+  // Edge e = (a, b) between (a, b, c) and (b, a, d) is split at v into
+  // (a, v, c), new (v, b, c), (b, v, d), new (v, a, d).
+  void split_edge(HalfEdgeId e, VertexId v) {
+    const unsigned ie = e % 3;
+    const HalfEdgeId e1 = e - ie + kNextIndex[ie], e2 = e - ie + kPrevIndex[ie];
+    const HalfEdgeId f = tw_[e];
+    const unsigned jf = f % 3;
+    const HalfEdgeId f1 = f - jf + kNextIndex[jf], f2 = f - jf + kPrevIndex[jf];
     const VertexId a = v_[e], b = v_[e1], c = v_[e2], d = v_[f2];
-    const HalfEdgeId tw_bc = tw_[e1], tw_ca = tw_[e2], tw_ad = tw_[f1], tw_db = tw_[f2];
-    v_[e] = c;
-    v_[e1] = a;
-    v_[e2] = d;
-    v_[f] = d;
-    v_[f1] = b;
-    v_[f2] = c;
-    tw_[e] = tw_ca;
-    tw_[tw_ca] = e;
-    tw_[e1] = tw_ad;
-    tw_[tw_ad] = e1;
-    tw_[f] = tw_db;
-    tw_[tw_db] = f;
-    tw_[f1] = tw_bc;
-    tw_[tw_bc] = f1;
-    tw_[e2] = f2;
-    tw_[f2] = e2;
+    const HalfEdgeId tw_bc = tw_[e1], tw_ad = tw_[f1];
+    const HalfEdgeId g0 = static_cast<HalfEdgeId>(used_), h0 = g0 + 3;
+    used_ += 6;
+    v_[g0] = v;
+    v_[g0 + 1] = b;
+    v_[g0 + 2] = c;
+    v_[h0] = v;
+    v_[h0 + 1] = a;
+    v_[h0 + 2] = d;
+    v_[e1] = v;
+    v_[f1] = v;
+    tw_[g0] = f;
+    tw_[f] = g0;
+    tw_[g0 + 1] = tw_bc;
+    tw_[tw_bc] = g0 + 1;
+    tw_[g0 + 2] = e1;
+    tw_[e1] = g0 + 2;
+    tw_[h0] = e;
+    tw_[e] = h0;
+    tw_[h0 + 1] = tw_ad;
+    tw_[tw_ad] = h0 + 1;
+    tw_[h0 + 2] = f1;
+    tw_[f1] = h0 + 2;
+    push(e2);
+    push(g0 + 1);
+    push(f2);
+    push(h0 + 1);
   }
 
   void legalize(VertexId v) {
@@ -163,9 +207,15 @@ class BulkBuilder {
     while (!stack_.empty()) {
       const HalfEdgeId e = stack_.back();
       stack_.pop_back();
-      last_ = tri_of(e);
+      const unsigned ie = e % 3;
+      const HalfEdgeId be = e - ie;
+      last_ = be / 3;
+      const HalfEdgeId e1 = be + kNextIndex[ie], e2 = be + kPrevIndex[ie];
       const HalfEdgeId f = tw_[e];
-      const VertexId a = v_[e], b = v_[next_edge(e)], d = v_[prev_edge(f)];
+      const unsigned jf = f % 3;
+      const HalfEdgeId bf = f - jf;
+      const HalfEdgeId f1 = bf + kNextIndex[jf], f2 = bf + kPrevIndex[jf];
+      const VertexId a = v_[e], b = v_[e1], d = v_[f2];
       bool flip_it;
       if (d == kInfinite)
         flip_it = false;
@@ -176,15 +226,33 @@ class BulkBuilder {
       else
         flip_it = incircle(p_[a], p_[b], p, p_[d]) > 0;
       if (!flip_it) continue;
-      flip(e, f);
-      push(next_edge(e));
+      // (a, b, v) + (b, a, d) become (v, a, d) in e's slot and (d, b, v) in f's.
+      const HalfEdgeId tw_bc = tw_[e1], tw_ca = tw_[e2], tw_ad = tw_[f1], tw_db = tw_[f2];
+      v_[e] = v;
+      v_[e1] = a;
+      v_[e2] = d;
+      v_[f] = d;
+      v_[f1] = b;
+      v_[f2] = v;
+      tw_[e] = tw_ca;
+      tw_[tw_ca] = e;
+      tw_[e1] = tw_ad;
+      tw_[tw_ad] = e1;
+      tw_[f] = tw_db;
+      tw_[tw_db] = f;
+      tw_[f1] = tw_bc;
+      tw_[tw_bc] = f1;
+      tw_[e2] = f2;
+      tw_[f2] = e2;
+      push(e1);
       push(f);
     }
   }
 
   Mesh& mesh_;
-  std::vector<VertexId>& v_;
-  std::vector<HalfEdgeId>& tw_;
+  std::size_t used_;  // half-edge slots in use
+  VertexId* v_ = nullptr;
+  HalfEdgeId* tw_ = nullptr;
   const Point* p_;
   std::vector<HalfEdgeId> stack_;
   TriId last_ = 0;
@@ -226,16 +294,20 @@ Mesh delaunay(std::span<const Point> points, const DelaunayOptions& options, Del
 
   std::vector<VertexId> dup_of;  // in insertion order, only when asked for
   if (stats) dup_of.assign(n, kNone);
-  BulkBuilder builder(mesh);
   std::size_t duplicates = 0;
-  TriId hint = 0;
-  for (std::size_t k = 1; k < n; ++k) {
-    if (k == i1 || k == i2) continue;
-    const VertexId v = static_cast<VertexId>(k);
-    const VertexId got = builder.insert(v, hint);
-    if (got != v) {
-      ++duplicates;
-      if (stats) dup_of[k] = got;
+  {
+    // A closed triangulation of k vertices plus the vertex at infinity has
+    // 2k - 2 triangles; the builder's arrays are sized for that once.
+    BulkBuilder builder(mesh, 2 * n + 2);
+    TriId hint = 0;
+    for (std::size_t k = 1; k < n; ++k) {
+      if (k == i1 || k == i2) continue;
+      const VertexId v = static_cast<VertexId>(k);
+      const VertexId got = builder.insert(v, hint);
+      if (got != v) {
+        ++duplicates;
+        if (stats) dup_of[k] = got;
+      }
     }
   }
   mesh.recount();
