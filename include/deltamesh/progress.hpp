@@ -78,7 +78,8 @@ class ProgressReporter {
   std::size_t next_check_;
   std::size_t check_every_ = 1024;
   Clock::time_point start_;
-  Clock::time_point last_;
+  Clock::time_point last_;        // last report
+  Clock::time_point last_check_;  // last clock reading
   std::chrono::milliseconds interval_;
   bool finished_ = false;
 };

@@ -13,10 +13,10 @@ ProgressReporter::ProgressReporter(const ProgressCallback& callback, std::string
       phase_(phase),
       unit_(unit),
       total_(total),
-      next_check_(callback ? check_every_ : static_cast<std::size_t>(-1)),
+      next_check_(callback ? std::size_t{1024} : static_cast<std::size_t>(-1)),
       interval_(interval) {
   if (!callback_) return;
-  start_ = last_ = Clock::now();
+  start_ = last_ = last_check_ = Clock::now();
   report(false);
 }
 
@@ -43,14 +43,16 @@ void ProgressReporter::check() {
     return;
   }
   const Clock::time_point now = Clock::now();
-  const auto since = now - last_;
-  // Adapt the stride so the clock is read roughly 20 times per interval.
-  if (since < interval_ / 40 && check_every_ < (std::size_t{1} << 24)) {
+  // Adapt the stride so the clock is read roughly 10 to 40 times per interval.
+  const auto since_check = now - last_check_;
+  last_check_ = now;
+  if (since_check < interval_ / 40 && check_every_ < (std::size_t{1} << 24)) {
     check_every_ *= 2;
-  } else if (since > interval_ / 5 && check_every_ > 16) {
+  } else if (since_check > interval_ / 10 && check_every_ > 16) {
     check_every_ /= 2;
   }
-  if (since >= interval_) {
+  next_check_ = done_ + check_every_;
+  if (now - last_ >= interval_) {
     last_ = now;
     report(false);
   }
