@@ -75,19 +75,20 @@ inline bool segments_conform(const Mesh& mesh, const std::vector<std::pair<Verte
     for (std::size_t steps = 0; v != b; ++steps) {
       if (steps > mesh.num_vertices()) return false;
       VertexId next = kNone;
-      mesh.for_each_out_edge(v, [&](HalfEdgeId e) {
-        if (!mesh.is_constrained(e)) return true;
-        const Point& w = mesh.point(mesh.dest(e));
+      auto try_edge = [&](HalfEdgeId e, VertexId w_id) {
+        if (next != kNone || !mesh.is_constrained(e)) return;
+        const Point& w = mesh.point(w_id);
         const double t = ((w.x - pa.x) * dx + (w.y - pa.y) * dy) / len2;
         const double off = std::fabs((w.x - pa.x) * dy - (w.y - pa.y) * dx) / len2;
-        if (t > progress && off < 1e-9) {
-          next = mesh.dest(e);
-          return false;
-        }
-        return true;
+        if (t > progress && off < 1e-9) next = w_id;
+      };
+      // Out-edges v -> w, and in-edges w -> v (a boundary segment may run
+      // against the mesh's half-edge orientation).
+      mesh.for_each_out_edge(v, [&](HalfEdgeId e) {
+        try_edge(e, mesh.dest(e));
+        try_edge(prev_edge(e), mesh.origin(prev_edge(e)));
+        return next == kNone;
       });
-      // Also look at the constrained edge ending at v on the boundary (the
-      // rotation from the most clockwise edge misses the incoming one).
       if (next == kNone) return false;
       const Point& w = mesh.point(next);
       progress = ((w.x - pa.x) * dx + (w.y - pa.y) * dy) / len2;

@@ -507,7 +507,18 @@ bool Refiner::faces_small_angle(TriId t, const Eval& ev) const {
       const double ux = pts_[op].x - A.x, uy = pts_[op].y - A.y;
       const double wx = pts_[oq].x - A.x, wy = pts_[oq].y - A.y;
       const double dot = ux * wx + uy * wy;
-      if (dot > 0 && 4 * dot * dot > (ux * ux + uy * uy) * (wx * wx + wy * wy)) return true;
+      if (!(dot > 0 && 4 * dot * dot > (ux * ux + uy * uy) * (wx * wx + wy * wy))) continue;
+      // ... and the triangle lies in the wedge between them: its third
+      // vertex is inside the (convex, < 60°) cone at the apex. A triangle
+      // beyond the wedge's mouth is skinny for other reasons and is split.
+      const VertexId r = tv_[prev_edge(e)];
+      // On one of the two segments (split points are off their line by rounding).
+      if (r == op || r == oq || (r >= n_input_ && (seg_of_[r] == sp || seg_of_[r] == sq))) return true;
+      const Point& R = pts_[r];
+      const double rx = R.x - A.x, ry = R.y - A.y;
+      const double side = ux * wy - uy * wx;  // orientation of the cone u -> w
+      const double s1 = ux * ry - uy * rx, s2 = rx * wy - ry * wx;
+      if (side > 0 ? (s1 >= 0 && s2 >= 0) : (s1 <= 0 && s2 <= 0)) return true;
     }
   return false;
 }
