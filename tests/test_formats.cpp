@@ -530,6 +530,28 @@ TEST_F(Formats, SvgParsesAsXmlAndRenders) {
   EXPECT_GT(fs::file_size(path("a.png")), 1000u);
 }
 
+TEST_F(Formats, SvgVoronoiOverlayParsesAndRenders) {
+  const Mesh m = sample_mesh(60);
+  const BoundedVoronoi cells = bounded_voronoi(m);
+  OutputOptions opt;
+  opt.voronoi = &cells;
+  write_output(m, path("v.svg"), opt);
+  const std::string text = slurp(path("v.svg"));
+  EXPECT_NE(text.find("class=\"voronoi\""), std::string::npos);
+  REQUIRE_TOOL(have_python(), "python3");
+  const Result r = py("import sys\n"
+                      "import xml.etree.ElementTree as ET\n"
+                      "r = ET.parse(sys.argv[1]).getroot()\n"
+                      "ns = '{http://www.w3.org/2000/svg}'\n"
+                      "v = [p for p in r.iter(ns + 'path') if p.get('class') == 'voronoi']\n"
+                      "print(len(v), v[0].get('d').count('z'))\n",
+                      {path("v.svg")});
+  EXPECT_EQ(r.out, "1 " + std::to_string(cells.cells.size()) + "\n");
+  REQUIRE_TOOL(have_rsvg(), "rsvg-convert (librsvg2-bin)");
+  const Result png = run("rsvg-convert -o " + quote(path("v.png")) + " " + quote(path("v.svg")));
+  EXPECT_EQ(png.status, 0) << png.out;
+}
+
 // ---------------------------------------------------------------------------
 // Writing by extension
 

@@ -192,7 +192,7 @@ struct OutputOptions {
   MshOptions msh;
   VtkOptions vtk;
   SvgOptions svg;
-  GeoJsonWriteOptions geojson;  // its voronoi pointer is overridden by `voronoi` when that is set
+  GeoJsonWriteOptions geojson;  // its voronoi pointer (and svg's) is overridden by `voronoi` when that is set
   int first_index = 0;          // Triangle formats: numbering
   bool write_markers = true;    // Triangle formats: markers (-B turns them off)
   // Bounded Voronoi cells for the SVG overlay and the GeoJSON cells (nullptr: none).

@@ -65,7 +65,12 @@ void write_output(const Mesh& mesh, const std::string& path, const OutputOptions
     case OutputFormat::Msh: write_msh(mesh, path, options.msh); return;
     case OutputFormat::Vtu: write_vtu(mesh, path, options.vtk); return;
     case OutputFormat::Vtk: write_vtk(mesh, path, options.vtk); return;
-    case OutputFormat::Svg: write_svg(mesh, path, options.svg); return;
+    case OutputFormat::Svg: {
+      SvgOptions s = options.svg;
+      if (options.voronoi) s.voronoi = options.voronoi;
+      write_svg(mesh, path, s);
+      return;
+    }
     case OutputFormat::GeoJson: {
       GeoJsonWriteOptions g = options.geojson;
       if (options.voronoi) g.voronoi = options.voronoi;

@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "deltamesh/version.hpp"
+#include "deltamesh/voronoi.hpp"
 #include "io/atomic_file.hpp"
 
 namespace deltamesh {
@@ -283,6 +284,32 @@ void write_svg(const Mesh& mesh, const std::string& path, const SvgOptions& opt)
   if (!seg.empty())
     out += "<path class=\"segments\" fill=\"none\" stroke=\"#000000\" stroke-width=\"" + fixed(bold, 3) +
            "\" stroke-linecap=\"round\" d=\"" + seg + "\"/>\n";
+  if (opt.voronoi) {
+    // Voronoi overlay: each cell as a closed subpath (relative moves).
+    std::string d;
+    std::int64_t px = 0, py = 0;
+    for (const VoronoiCell& cell : opt.voronoi->cells) {
+      if (cell.ring.size() < 3) continue;
+      const bool first = d.empty();
+      const std::int64_t x0 = X(cell.ring[0]), y0 = Y(cell.ring[0]);
+      d += first ? 'M' : 'm';
+      grid.put(d, first ? x0 : x0 - px, true);
+      grid.put_sep(d, first ? y0 : y0 - py);
+      d += 'l';
+      std::int64_t cx = x0, cy = y0;
+      for (std::size_t i = 1; i < cell.ring.size(); ++i) {
+        const std::int64_t x = X(cell.ring[i]), y = Y(cell.ring[i]);
+        grid.put_sep(d, x - cx);
+        grid.put_sep(d, y - cy);
+        cx = x, cy = y;
+      }
+      d += 'z';
+      px = x0, py = y0;
+    }
+    if (!d.empty())
+      out += "<path class=\"voronoi\" fill=\"none\" stroke=\"#1f5fbf\" stroke-width=\"" + fixed(thin, 3) +
+             "\" stroke-linejoin=\"round\" d=\"" + d + "\"/>\n";
+  }
   if (opt.draw_vertices) {
     const std::string r = fixed(std::clamp(2.0 * thin, 0.4, 2.5), 3);
     out += "<g class=\"vertices\" fill=\"#1f3a93\">\n";
