@@ -174,6 +174,41 @@ bool TextReader::next_line() {
   return false;
 }
 
+bool TextReader::try_point_line(long long expected_id, bool with_marker, double& x, double& y,
+                                long long& marker) {
+  const char* p = text_.data() + pos_;
+  const char* const stop = text_.data() + text_.size();
+  auto skip_blanks = [&] {
+    while (p < stop && (*p == ' ' || *p == '\t')) ++p;
+  };
+  skip_blanks();
+  long long id;
+  auto r = std::from_chars(p, stop, id);
+  if (r.ec != std::errc() || id != expected_id) return false;
+  p = r.ptr;
+  for (double* out : {&x, &y}) {
+    if (p == stop || (*p != ' ' && *p != '\t')) return false;
+    skip_blanks();
+    const auto d = std::from_chars(p, stop, *out);
+    if (d.ec != std::errc() || !(*out - *out == 0.0)) return false;
+    p = d.ptr;
+  }
+  if (with_marker) {
+    if (p == stop || (*p != ' ' && *p != '\t')) return false;
+    skip_blanks();
+    r = std::from_chars(p, stop, marker);
+    if (r.ec != std::errc()) return false;
+    p = r.ptr;
+  }
+  while (p < stop && (*p == ' ' || *p == '\t' || *p == '\r')) ++p;
+  if (p < stop && *p != '\n') return false;
+  line_ = next_line_;
+  ++next_line_;
+  tokens_.clear();
+  pos_ = p < stop ? static_cast<std::size_t>(p - text_.data()) + 1 : text_.size();
+  return true;
+}
+
 std::size_t TextReader::last_line() const {
   std::size_t n = 0;
   for (const char c : text_) n += c == '\n';

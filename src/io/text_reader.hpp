@@ -47,6 +47,14 @@ class TextReader {
   // Number of the last line of the file (for end-of-file messages).
   std::size_t last_line() const;
 
+  // Fast path for the common entry line "<id> <x> <y> [<marker>]": parses
+  // the next line in place when it is exactly that shape, with id ==
+  // expected_id and finite coordinates, and moves past it. Returns false,
+  // consuming nothing, for anything else (comments, blank lines, extra
+  // fields, odd spellings, errors): the caller then takes the general path,
+  // which gives the precise error message.
+  bool try_point_line(long long expected_id, bool with_marker, double& x, double& y, long long& marker);
+
   std::size_t size() const { return tokens_.size(); }
   std::string_view token(std::size_t i) const { return tokens_[i]; }
 

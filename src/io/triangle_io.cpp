@@ -157,6 +157,15 @@ void read_vertices(TextReader& r, const NodeHeader& h, Pslg& g) {
   if (h.markers) g.point_markers.reserve(n);
   long long base = 0;
   for (long long i = 0; i < h.count; ++i) {
+    if (i > 0 && na == 0) {
+      double x, y;
+      long long marker = 0;
+      if (r.try_point_line(base + i, h.markers, x, y, marker) && marker == static_cast<int>(marker)) {
+        g.points.push_back({x, y});
+        if (h.markers) g.point_markers.push_back(static_cast<int>(marker));
+        continue;
+      }
+    }
     next_entry(r, i, h.count, h.line, "vertices");
     const long long id = check_id(r, i, base, "vertex", "vertices");
     require_coordinates(r, "vertex", id);
