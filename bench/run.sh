@@ -31,21 +31,22 @@ echo "== bench_delaunay: library calls (medians of the repetitions); load averag
 echo "JSON written to $json"
 
 # ---- whole process -------------------------------------------------------------
-median() { sort -g | awk '{ v[NR] = $1 } END { if (NR == 0) print "nan"; else if (NR % 2) print v[(NR + 1) / 2]; else print (v[NR / 2] + v[NR / 2 + 1]) / 2 }'; }
+# Median of column $1 of stdin.
+median() { awk -v c="$1" '{ print $c }' | sort -g | awk '{ v[NR] = $1 } END { if (NR == 0) print "nan"; else if (NR % 2) print v[(NR + 1) / 2]; else print (v[NR / 2] + v[NR / 2 + 1]) / 2 }'; }
 
-# Wall seconds of one run of "$@" (output discarded, failure fatal).
-wall() {
-  local t0=$EPOCHREALTIME
-  if ! "$@" >/dev/null 2>"$tmp/stderr"; then
+# "wall cpu" seconds of one run of "$@" (cpu = user + sys; output discarded,
+# failure fatal).
+timed() {
+  local TIMEFORMAT='%3R %3U %3S' t
+  if ! t=$( { time "$@" >/dev/null 2>"$tmp/stderr"; } 2>&1); then
     echo "run.sh: failed: $*" >&2
     cat "$tmp/stderr" >&2
     exit 1
   fi
-  local t1=$EPOCHREALTIME
-  awk -v a="$t0" -v b="$t1" 'BEGIN { printf "%.4f\n", b - a }'
+  awk '{ printf "%.3f %.3f\n", $1, $2 + $3 }' <<<"$t"
 }
 
-whole=()  # "label dm_median cgal_median" lines for the summary
+whole=()  # "name|dm wall|dm cpu|cgal wall|cgal cpu|label" for the summary
 if [ ! -x "$bin/deltamesh" ] || [ ! -x "$bin/deltamesh-gen" ]; then
   echo "run.sh: deltamesh or deltamesh-gen not built; whole-process comparison skipped" >&2
 else
@@ -59,20 +60,21 @@ else
     echo "run.sh: cgal_triangulate_node not built (CGAL not found); deltamesh timed alone"
   fi
   echo
-  echo "== whole process, 10^6 uniform points, $runs runs each (wall seconds)"
+  echo "== whole process, 10^6 uniform points, $runs runs each, alternating (median seconds, wall / cpu)"
   for mode in ele none; do
     : >"$tmp/dm" && : >"$tmp/cg"
     for ((i = 0; i < runs; ++i)); do
       if [ $mode = ele ]; then
-        wall "$bin/deltamesh" -NQ "$tmp/u1m.node" >>"$tmp/dm"
-        if [ $have_cgal = 1 ]; then wall "$bin/cgal_triangulate_node" -o "$tmp/cgal.ele" "$tmp/u1m.node" >>"$tmp/cg"; fi
+        timed "$bin/deltamesh" -NQ "$tmp/u1m.node" >>"$tmp/dm"
+        if [ $have_cgal = 1 ]; then timed "$bin/cgal_triangulate_node" -o "$tmp/cgal.ele" "$tmp/u1m.node" >>"$tmp/cg"; fi
       else
-        wall "$bin/deltamesh" -NEQ "$tmp/u1m.node" >>"$tmp/dm"
-        if [ $have_cgal = 1 ]; then wall "$bin/cgal_triangulate_node" --no-output "$tmp/u1m.node" >>"$tmp/cg"; fi
+        timed "$bin/deltamesh" -NEQ "$tmp/u1m.node" >>"$tmp/dm"
+        if [ $have_cgal = 1 ]; then timed "$bin/cgal_triangulate_node" --no-output "$tmp/u1m.node" >>"$tmp/cg"; fi
       fi
     done
-    dm=$(median <"$tmp/dm")
-    if [ $have_cgal = 1 ]; then cg=$(median <"$tmp/cg"); else cg=nan; fi
+    dmw=$(median 1 <"$tmp/dm") dmc=$(median 2 <"$tmp/dm")
+    cgw=nan cgc=nan
+    if [ $have_cgal = 1 ]; then cgw=$(median 1 <"$tmp/cg") cgc=$(median 2 <"$tmp/cg"); fi
     if [ $mode = ele ]; then
       label="read+triangulate+write .ele"
       cmds="deltamesh -NQ | cgal_triangulate_node"
@@ -80,9 +82,9 @@ else
       label="read+triangulate"
       cmds="deltamesh -NEQ | cgal_triangulate_node --no-output"
     fi
-    if [ "$cg" = nan ]; then cgs="      -"; else cgs=$(printf '%7.3f' "$cg"); fi
-    printf '%-28s deltamesh %7.3f s   CGAL %s s   (%s)\n' "$label" "$dm" "$cgs" "$cmds"
-    whole+=("process_$mode|$dm|$cg|$label")
+    if [ $have_cgal = 1 ]; then cgs=$(printf '%7.3f / %7.3f' "$cgw" "$cgc"); else cgs="-"; fi
+    printf '%-28s deltamesh %7.3f / %7.3f   CGAL %s   (%s)\n' "$label" "$dmw" "$dmc" "$cgs" "$cmds"
+    whole+=("process_$mode|$dmw|$dmc|$cgw|$cgc|$label")
   done
 fi
 
@@ -122,9 +124,12 @@ echo "   cpu ratio: the same with CPU times, steadier on a busy machine)"
       if (busy) print "warning: wall time exceeds CPU time by over 15% in some case: the machine was busy, figures are inflated"
     }' "$json"
   for w in "${whole[@]}"; do
-    IFS='|' read -r name dm cg label <<<"$w"
-    awk -v c="$name" -v l="$label" -v d="$dm" -v g="$cg" 'BEGIN {
-      r = (g != "nan" && d + 0 > 0) ? sprintf("%.2f", g / d) : "-"
-      printf "%-16s %12s %12s %7s %9s   (whole process, 10^6 uniform: %s)\n", c, sprintf("%.3f s", d), (g == "nan" ? "-" : sprintf("%.3f s", g)), r, "", l }'
+    IFS='|' read -r name dw dc gw gc label <<<"$w"
+    awk -v c="$name" -v l="$label" -v dw="$dw" -v dc="$dc" -v gw="$gw" -v gc="$gc" 'BEGIN {
+      have = gw != "nan"
+      r = (have && dw + 0 > 0) ? sprintf("%.2f", gw / dw) : "-"
+      rc = (have && dc + 0 > 0) ? sprintf("%.2f", gc / dc) : "-"
+      printf "%-16s %12s %12s %7s %9s   (whole process, 10^6 uniform: %s)\n", c, sprintf("%.3f s", dw),
+        (have ? sprintf("%.3f s", gw) : "-"), r, rc, l }'
   done
 }
