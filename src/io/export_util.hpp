@@ -26,12 +26,15 @@ class OutBuffer {
     buf_[n_++] = c;
   }
   void put(std::string_view s) {
-    for (std::size_t i = 0; i < s.size(); i += kSlack / 2) {
-      room();
-      const std::size_t k = std::min(s.size() - i, kSlack / 2);
-      s.copy(buf_.data() + n_, k, i);
-      n_ += k;
+    if (n_ + s.size() > buf_.size()) {
+      flush();
+      if (s.size() > buf_.size()) {
+        file_.write(s);
+        return;
+      }
     }
+    s.copy(buf_.data() + n_, s.size());
+    n_ += s.size();
   }
   void put_int(long long v) {
     room();

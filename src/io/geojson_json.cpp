@@ -74,7 +74,7 @@ class Json::Parser {
     if (j_.nodes_.size() >= static_cast<std::size_t>(kNoNode) - 1) j_.fail_at(p_, "too many JSON values");
     Node node;
     node.kind = k;
-    node.offset = p_;
+    node.offset = static_cast<std::uint32_t>(p_);
     j_.nodes_.push_back(node);
     return static_cast<Id>(j_.nodes_.size() - 1);
   }
@@ -98,8 +98,7 @@ class Json::Parser {
       case '[': return array(depth);
       case '"': {
         const Id id = new_node(Kind::String);
-        j_.nodes_[id].begin = static_cast<std::uint32_t>(j_.strings_.size());
-        j_.strings_.push_back(string_token());
+        j_.nodes_[id].range = string_token();
         return id;
       }
       case 't': literal("true", Kind::True); return static_cast<Id>(j_.nodes_.size() - 1);
@@ -168,25 +167,28 @@ class Json::Parser {
     return v;
   }
 
-  std::string string_token() {
+  // Decodes a string into chars_; returns its range there.
+  Range string_token() {
     const std::size_t start = p_;
     ++p_;  // opening quote
-    std::string out;
+    std::string& out = j_.chars_;
+    const auto begin = static_cast<std::uint32_t>(out.size());
     while (true) {
+      // Plain characters up to the next quote, backslash or control character in one go.
+      std::size_t q = p_;
+      while (q < n_ && s_[q] != '"' && s_[q] != '\\' && static_cast<unsigned char>(s_[q]) >= 0x20) ++q;
+      out.append(s_.data() + p_, q - p_);
+      p_ = q;
       if (p_ >= n_) j_.fail_at(start, "unterminated string (no closing '\"' before the end of the file)");
       const char c = s_[p_];
       if (c == '"') {
         ++p_;
-        return out;
+        if (out.size() >= static_cast<std::size_t>(kNoNode)) j_.fail_at(start, "too much text in strings");
+        return Range{begin, static_cast<std::uint32_t>(out.size())};
       }
       if (static_cast<unsigned char>(c) < 0x20) {
         if (c == '\n') j_.fail_at(start, "unterminated string (a line break before the closing '\"')");
         j_.fail_at(p_, "control character " + shown(c) + " in a string (escape it)");
-      }
-      if (c != '\\') {
-        out += c;
-        ++p_;
-        continue;
       }
       ++p_;
       if (p_ >= n_) unexpected("an escape character after '\\'");
@@ -257,14 +259,14 @@ class Json::Parser {
     if (all_numbers && count > 0) {
       // The children are the last `count` nodes: fold them into the pool.
       node.kind = Kind::NumberArray;
-      node.begin = static_cast<std::uint32_t>(j_.numbers_.size());
+      const auto begin = static_cast<std::uint32_t>(j_.numbers_.size());
       for (std::size_t i = mark; i < stack_.size(); ++i) j_.numbers_.push_back(j_.nodes_[stack_[i]].number);
-      node.end = static_cast<std::uint32_t>(j_.numbers_.size());
+      node.range = Range{begin, static_cast<std::uint32_t>(j_.numbers_.size())};
       j_.nodes_.resize(id + 1);
     } else {
-      node.begin = static_cast<std::uint32_t>(j_.items_.size());
+      const auto begin = static_cast<std::uint32_t>(j_.items_.size());
       j_.items_.insert(j_.items_.end(), stack_.begin() + static_cast<std::ptrdiff_t>(mark), stack_.end());
-      node.end = static_cast<std::uint32_t>(j_.items_.size());
+      node.range = Range{begin, static_cast<std::uint32_t>(j_.items_.size())};
     }
     stack_.resize(mark);
     return id;
@@ -282,14 +284,13 @@ class Json::Parser {
       while (true) {
         skip_ws();
         if (p_ >= n_ || s_[p_] != '"') unexpected("a member name in double quotes");
-        const auto key = static_cast<std::uint32_t>(j_.strings_.size());
-        j_.strings_.push_back(string_token());
+        const Range key = string_token();
         skip_ws();
         if (p_ >= n_ || s_[p_] != ':') unexpected("':' after a member name");
         ++p_;
         skip_ws();
         const Id child = value(depth + 1);
-        pairs_.emplace_back(key, child);
+        pairs_.push_back(Member{key, child});
         skip_ws();
         if (p_ < n_ && s_[p_] == ',') {
           ++p_;
@@ -305,9 +306,9 @@ class Json::Parser {
       }
     }
     Node& node = j_.nodes_[id];
-    node.begin = static_cast<std::uint32_t>(j_.members_.size());
+    const auto begin = static_cast<std::uint32_t>(j_.members_.size());
     j_.members_.insert(j_.members_.end(), pairs_.begin() + static_cast<std::ptrdiff_t>(mark), pairs_.end());
-    node.end = static_cast<std::uint32_t>(j_.members_.size());
+    node.range = Range{begin, static_cast<std::uint32_t>(j_.members_.size())};
     pairs_.resize(mark);
     return id;
   }
@@ -317,7 +318,7 @@ class Json::Parser {
   std::size_t n_;
   std::size_t p_ = 0;
   std::vector<Id> stack_;
-  std::vector<std::pair<std::uint32_t, Id>> pairs_;
+  std::vector<Member> pairs_;
 };
 
 Json::Json(std::string_view text, std::string file) : text_(text), file_(std::move(file)) {
@@ -326,9 +327,9 @@ Json::Json(std::string_view text, std::string file) : text_(text), file_(std::mo
 }
 
 Json::Id Json::member(Id object, std::string_view key) const {
-  const Node& n = nodes_[object];
-  for (std::uint32_t i = n.end; i > n.begin; --i)
-    if (strings_[members_[i - 1].first] == key) return members_[i - 1].second;
+  const Range r = nodes_[object].range;
+  for (std::uint32_t i = r.end; i > r.begin; --i)
+    if (span(members_[i - 1].key.begin, members_[i - 1].key.end) == key) return members_[i - 1].value;
   return kNoNode;
 }
 

@@ -28,15 +28,13 @@ class Json {
   Kind kind(Id n) const { return nodes_[n].kind; }
   std::size_t offset(Id n) const { return nodes_[n].offset; }
   double number(Id n) const { return nodes_[n].number; }
-  const std::string& string(Id n) const { return strings_[nodes_[n].begin]; }
+  std::string_view string(Id n) const { return span(nodes_[n].range.begin, nodes_[n].range.end); }
   // Elements of an Array (not of a NumberArray).
-  std::size_t size(Id n) const { return nodes_[n].end - nodes_[n].begin; }
-  Id item(Id n, std::size_t i) const { return items_[nodes_[n].begin + i]; }
+  std::size_t size(Id n) const { return nodes_[n].range.end - nodes_[n].range.begin; }
+  Id item(Id n, std::size_t i) const { return items_[nodes_[n].range.begin + i]; }
   // Values of a NumberArray.
-  const double* numbers(Id n) const { return numbers_.data() + nodes_[n].begin; }
-  std::size_t count(Id n) const {
-    return kind(n) == Kind::NumberArray ? nodes_[n].end - nodes_[n].begin : size(n);
-  }
+  const double* numbers(Id n) const { return numbers_.data() + nodes_[n].range.begin; }
+  std::size_t count(Id n) const { return size(n); }
   bool is_array(Id n) const { return kind(n) == Kind::Array || kind(n) == Kind::NumberArray; }
   // The value of member `key` of an Object (the last one when repeated), or kNoNode.
   Id member(Id object, std::string_view key) const;
@@ -49,20 +47,35 @@ class Json {
   const std::string& file() const { return file_; }
 
  private:
+  // 16 bytes: files are limited to 4 GiB, so offsets fit 32 bits.
+  struct Range {
+    std::uint32_t begin, end;  // items_ / members_ / numbers_ / chars_ range
+  };
   struct Node {
     Kind kind = Kind::Null;
-    std::uint32_t begin = 0, end = 0;  // items_/members_/numbers_ range, or strings_ index
-    double number = 0.0;
-    std::size_t offset = 0;
+    std::uint32_t offset = 0;
+    union {
+      Range range;
+      double number;
+    };
+    Node() : range{0, 0} {}
+  };
+  struct Member {
+    Range key;  // in chars_
+    Id value;
   };
   class Parser;
+
+  std::string_view span(std::uint32_t begin, std::uint32_t end) const {
+    return std::string_view(chars_).substr(begin, end - begin);
+  }
 
   std::string_view text_;
   std::string file_;
   std::vector<Node> nodes_;
   std::vector<Id> items_;
-  std::vector<std::pair<std::uint32_t, Id>> members_;  // key (strings_ index), value
-  std::vector<std::string> strings_;
+  std::vector<Member> members_;
+  std::string chars_;  // every decoded string and member name, end to end
   std::vector<double> numbers_;
 };
 

@@ -2,8 +2,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
-#include <unordered_map>
-#include <unordered_set>
 
 #include "deltamesh/formats.hpp"
 #include "deltamesh/predicates.hpp"
@@ -18,12 +16,88 @@ using io::Json;
 using Id = Json::Id;
 using Kind = Json::Kind;
 
-struct PairHash {
-  std::size_t operator()(const std::pair<std::uint64_t, std::uint64_t>& p) const {
-    std::uint64_t h = p.first * 0x9E3779B97F4A7C15ull;
-    h ^= p.second + 0x7F4A7C159E3779B9ull + (h << 6) + (h >> 2);
-    return static_cast<std::size_t>(h ^ (h >> 31));
+std::uint64_t mix(std::uint64_t z) {
+  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+  z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+  return z ^ (z >> 31);
+}
+
+// Open-addressing hash tables (linear probing, power-of-two capacity): the
+// reader looks up every position and every ring edge, and node-based
+// std::unordered_* spent most of its time chasing pointers.
+class PointIndex {
+ public:
+  // The id stored for key (x, y), or `fresh` (which is then stored).
+  VertexId find_or_insert(std::uint64_t x, std::uint64_t y, VertexId fresh, bool& inserted) {
+    if (2 * (size_ + 1) > slots_.size()) grow();
+    std::size_t i = hash(x, y) & (slots_.size() - 1);
+    while (slots_[i].id != kNone) {
+      if (slots_[i].x == x && slots_[i].y == y) {
+        inserted = false;
+        return slots_[i].id;
+      }
+      i = (i + 1) & (slots_.size() - 1);
+    }
+    slots_[i] = {x, y, fresh};
+    ++size_;
+    inserted = true;
+    return fresh;
   }
+
+ private:
+  struct Slot {
+    std::uint64_t x = 0, y = 0;
+    VertexId id = kNone;
+  };
+  static std::size_t hash(std::uint64_t x, std::uint64_t y) {
+    return static_cast<std::size_t>(mix(x ^ mix(y + 0x9e3779b97f4a7c15ull)));
+  }
+  void grow() {
+    std::vector<Slot> old(std::max<std::size_t>(64, 2 * slots_.size()));
+    old.swap(slots_);
+    for (const Slot& s : old) {
+      if (s.id == kNone) continue;
+      std::size_t i = hash(s.x, s.y) & (slots_.size() - 1);
+      while (slots_[i].id != kNone) i = (i + 1) & (slots_.size() - 1);
+      slots_[i] = s;
+    }
+  }
+  std::vector<Slot> slots_;
+  std::size_t size_ = 0;
+};
+
+// A set of undirected edges (vertex pairs).
+class EdgeSet {
+ public:
+  // True when the edge was not in the set yet.
+  bool insert(VertexId a, VertexId b) {
+    if (a > b) std::swap(a, b);
+    const std::uint64_t key = (std::uint64_t{a} << 32) | b;  // never kEmpty: a <= b < kNone
+    if (2 * (size_ + 1) > slots_.size()) grow();
+    std::size_t i = static_cast<std::size_t>(mix(key)) & (slots_.size() - 1);
+    while (slots_[i] != kEmpty) {
+      if (slots_[i] == key) return false;
+      i = (i + 1) & (slots_.size() - 1);
+    }
+    slots_[i] = key;
+    ++size_;
+    return true;
+  }
+
+ private:
+  static constexpr std::uint64_t kEmpty = ~std::uint64_t{0};
+  void grow() {
+    std::vector<std::uint64_t> old(std::max<std::size_t>(64, 2 * slots_.size()), kEmpty);
+    old.swap(slots_);
+    for (const std::uint64_t k : old) {
+      if (k == kEmpty) continue;
+      std::size_t i = static_cast<std::size_t>(mix(k)) & (slots_.size() - 1);
+      while (slots_[i] != kEmpty) i = (i + 1) & (slots_.size() - 1);
+      slots_[i] = k;
+    }
+  }
+  std::vector<std::uint64_t> slots_;
+  std::size_t size_ = 0;
 };
 
 std::uint64_t bits_of(double v) {
@@ -135,7 +209,7 @@ class Reader {
     if (t == Json::kNoNode) j_.fail(obj, "GeoJSON object without a \"type\" member");
     if (j_.kind(t) != Kind::String)
       j_.fail(t, std::string("\"type\" must be a string, found ") + Json::describe(j_.kind(t)));
-    return j_.string(t);
+    return std::string(j_.string(t));
   }
 
   Id require(Id obj, const char* key, const std::string& type) {
@@ -208,14 +282,16 @@ class Reader {
   }
 
   VertexId vertex(const Point& p) {
-    const auto key = std::make_pair(bits_of(p.x), bits_of(p.y));
-    const auto [it, inserted] = index_.try_emplace(key, static_cast<VertexId>(pslg_.points.size()));
+    bool inserted = false;
+    const VertexId id =
+        index_.find_or_insert(bits_of(p.x), bits_of(p.y), static_cast<VertexId>(pslg_.points.size()), inserted);
     if (inserted) {
+      if (pslg_.points.size() >= kNone - 1) j_.fail_at(0, "too many distinct positions");
       pslg_.points.push_back({p.x == 0.0 ? 0.0 : p.x, p.y == 0.0 ? 0.0 : p.y});
     } else {
       ++info_.duplicate_points;
     }
-    return it->second;
+    return id;
   }
 
   void polygon(Id coords, Id feature) {
@@ -231,15 +307,18 @@ class Reader {
       marker_override = static_cast<int>(j_.number(m));
       has_marker = true;
     }
+    const bool want_seed = property(feature, opt_.attribute_property) != Json::kNoNode ||
+                           property(feature, opt_.area_property) != Json::kNoNode;
     std::vector<Ring> rings;
     for (std::size_t r = 0; r < j_.size(coords); ++r) {
       const Id ring = j_.item(coords, r);
       require_array(ring, "a linear ring");
       if (j_.kind(ring) == Kind::NumberArray) j_.fail(ring, "a linear ring must be an array of positions");
       const std::size_t n = j_.size(ring);
-      std::vector<VertexId> ids;
-      ids.reserve(n);
-      std::vector<Point> pts;
+      std::vector<VertexId>& ids = ids_;
+      std::vector<Point>& pts = pts_;
+      ids.clear();
+      pts.clear();
       for (std::size_t i = 0; i < n; ++i) {
         const Id pos = j_.item(ring, i);
         if (j_.kind(pos) != Kind::NumberArray || j_.count(pos) < 2)
@@ -260,7 +339,8 @@ class Reader {
       }
       while (ids.size() > 1 && ids.front() == ids.back()) ids.pop_back();
       // Fewer than 3 distinct vertices enclose nothing.
-      std::vector<VertexId> distinct = ids;
+      std::vector<VertexId>& distinct = distinct_;
+      distinct.assign(ids.begin(), ids.end());
       std::sort(distinct.begin(), distinct.end());
       distinct.erase(std::unique(distinct.begin(), distinct.end()), distinct.end());
       if (distinct.size() < 3) {
@@ -273,18 +353,18 @@ class Reader {
       const int marker = has_marker ? marker_override : (hole ? opt_.hole_marker : opt_.outer_marker);
       for (std::size_t i = 0; i < ids.size(); ++i) {
         const VertexId a = ids[i], b = ids[(i + 1) % ids.size()];
-        const auto key = std::make_pair(std::min<std::uint64_t>(a, b), std::max<std::uint64_t>(a, b));
-        if (!segments_.insert(key).second) {
+        if (!segments_.insert(a, b)) {
           ++info_.duplicate_segments;
           continue;
         }
         pslg_.segments.push_back({a, b, marker});
       }
+      if (!want_seed) continue;
       Ring cleaned;
       for (const VertexId v : ids) cleaned.push_back(pslg_.points[v]);
       rings.push_back(std::move(cleaned));
     }
-    seed(rings, feature);
+    if (want_seed) seed(rings, feature);
   }
 
   void seed(const std::vector<Ring>& rings, Id feature) {
@@ -298,7 +378,7 @@ class Reader {
         case Kind::True: s.attribute = 1.0; break;
         case Kind::False: s.attribute = 0.0; break;
         case Kind::String: {
-          const std::string& v = j_.string(attr);
+          const std::string v(j_.string(attr));
           auto it = std::find(info_.categories.begin(), info_.categories.end(), v);
           if (it == info_.categories.end()) {
             info_.categories.push_back(v);
@@ -329,8 +409,10 @@ class Reader {
   const GeoJsonReadOptions& opt_;
   GeoJsonInfo& info_;
   Pslg pslg_;
-  std::unordered_map<std::pair<std::uint64_t, std::uint64_t>, VertexId, PairHash> index_;
-  std::unordered_set<std::pair<std::uint64_t, std::uint64_t>, PairHash> segments_;
+  PointIndex index_;
+  EdgeSet segments_;
+  std::vector<VertexId> ids_, distinct_;  // per-ring scratch
+  std::vector<Point> pts_;
 };
 
 }  // namespace

@@ -112,46 +112,57 @@ void put_ascii_values(OutBuffer& out, const std::vector<T>& values, std::size_t 
   }
 }
 
-// Base64 (RFC 4648) of a byte stream, fed in pieces.
+// Base64 (RFC 4648) of a byte stream, fed in pieces; output goes to the
+// OutBuffer in blocks.
 class Base64 {
  public:
   explicit Base64(OutBuffer& out) : out_(out) {}
+  ~Base64() { flush(); }
   void feed(const void* data, std::size_t n) {
     const auto* p = static_cast<const unsigned char*>(data);
-    for (std::size_t i = 0; i < n; ++i) {
-      carry_[have_++] = p[i];
-      if (have_ == 3) emit();
+    std::size_t i = 0;
+    while (have_ != 0 && i < n) {  // complete a pending triple
+      carry_[have_++] = p[i++];
+      if (have_ == 3) {
+        encode(carry_);
+        have_ = 0;
+      }
     }
+    for (; i + 3 <= n; i += 3) encode(p + i);
+    while (i < n) carry_[have_++] = p[i++];
   }
+  // Pads and emits what is pending (ends one base64 block).
   void finish() {
-    if (have_ == 0) return;
-    const std::size_t had = have_;
-    for (std::size_t i = have_; i < 3; ++i) carry_[i] = 0;
-    char q[4];
-    encode(q);
-    for (std::size_t i = had + 1; i < 4; ++i) q[i] = '=';
-    out_.put(std::string_view(q, 4));
-    have_ = 0;
+    if (have_ != 0) {
+      const std::size_t had = have_;
+      for (std::size_t i = have_; i < 3; ++i) carry_[i] = 0;
+      encode(carry_);
+      for (std::size_t i = had + 1; i < 4; ++i) buf_[n_ - 4 + i] = '=';
+      have_ = 0;
+    }
+    flush();
   }
 
  private:
-  void encode(char* q) const {
+  void encode(const unsigned char* t) {
     static constexpr char kAlphabet[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-    const unsigned v = (unsigned{carry_[0]} << 16) | (unsigned{carry_[1]} << 8) | unsigned{carry_[2]};
-    q[0] = kAlphabet[(v >> 18) & 63];
-    q[1] = kAlphabet[(v >> 12) & 63];
-    q[2] = kAlphabet[(v >> 6) & 63];
-    q[3] = kAlphabet[v & 63];
+    const unsigned v = (unsigned{t[0]} << 16) | (unsigned{t[1]} << 8) | unsigned{t[2]};
+    buf_[n_] = kAlphabet[(v >> 18) & 63];
+    buf_[n_ + 1] = kAlphabet[(v >> 12) & 63];
+    buf_[n_ + 2] = kAlphabet[(v >> 6) & 63];
+    buf_[n_ + 3] = kAlphabet[v & 63];
+    n_ += 4;
+    if (n_ == sizeof buf_) flush();
   }
-  void emit() {
-    char q[4];
-    encode(q);
-    out_.put(std::string_view(q, 4));
-    have_ = 0;
+  void flush() {
+    out_.put(std::string_view(buf_, n_));
+    n_ = 0;
   }
   OutBuffer& out_;
   unsigned char carry_[3] = {0, 0, 0};
   std::size_t have_ = 0;
+  char buf_[4096];
+  std::size_t n_ = 0;
 };
 
 bool little_endian() {
