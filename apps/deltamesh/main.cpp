@@ -1,4 +1,5 @@
 // deltamesh command line: Triangle's conventions for inputs, outputs and switches.
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <exception>
@@ -9,6 +10,7 @@
 
 #include "deltamesh/deltamesh.hpp"
 #include "deltamesh/switches.hpp"
+#include "deltamesh/triangulate.hpp"
 
 namespace dm = deltamesh;
 using namespace deltamesh::cli;
@@ -18,7 +20,7 @@ namespace {
 using Clock = std::chrono::steady_clock;
 
 struct Phase {
-  const char* name;
+  std::string name;
   double seconds;
 };
 
@@ -30,10 +32,11 @@ bool ends_with(const std::string& s, const std::string& suffix) {
 struct InputName {
   std::string base;
   int iteration = 0;
+  std::string with_iteration() const { return base + (iteration ? "." + std::to_string(iteration) : ""); }
 };
 
 InputName split_input_name(std::string path) {
-  for (const char* ext : {".node", ".poly", ".ele"})
+  for (const char* ext : {".node", ".poly", ".ele", ".area"})
     if (ends_with(path, ext)) {
       path.resize(path.size() - std::string(ext).size());
       break;
@@ -50,56 +53,104 @@ InputName split_input_name(std::string path) {
   return name;
 }
 
+// An input that is not there is reported before anything is read.
+class MissingInput {
+ public:
+  explicit MissingInput(std::string path) : path_(std::move(path)) {}
+  const std::string& path() const { return path_; }
+
+ private:
+  std::string path_;
+};
+
+void require_file(const std::string& path) {
+  if (!std::filesystem::exists(path)) throw MissingInput(path);
+}
+
 class Run {
  public:
   explicit Run(const Options& o) : opt_(o) {}
 
   int execute() {
     const InputName name = split_input_name(opt_.input);
-    const std::string in_path = name.base + (name.iteration ? "." + std::to_string(name.iteration) : "") +
-                                (opt_.poly ? ".poly" : ".node");
-    if (!std::filesystem::exists(in_path)) {
-      std::fprintf(stderr, "deltamesh: cannot open input file '%s': no such file\n", in_path.c_str());
-      return kExitInput;
-    }
-    if (opt_.poly) {
-      std::fprintf(stderr, "deltamesh: -p (segments, holes and regions from a .poly file) is not available in this version\n");
-      return kExitUsage;
-    }
-    auto t = Clock::now();
-    dm::Pslg input = dm::read_node(in_path);
-    phase("read", t);
+    const std::string in = name.with_iteration();
+    const auto t_total = Clock::now();
 
-    t = Clock::now();
-    dm::DelaunayStats stats;
-    dm::Mesh mesh = dm::delaunay(input.points, {}, &stats);
-    phases_.push_back({"sort", stats.sort_seconds});
-    phases_.push_back({"insert", stats.insert_seconds});
-    phase("triangulate (total)", t);
-    mesh.vertex_markers() = std::move(input.point_markers);
-    mesh.set_num_vertex_attributes(input.num_point_attributes);
-    mesh.vertex_attributes() = std::move(input.point_attributes);
+    dm::Mesh mesh;
+    dm::TriangulateStats stats;
+    if (opt_.refine) {
+      mesh = read_mesh(in);
+    } else {
+      const std::string in_path = in + (opt_.poly ? ".poly" : ".node");
+      require_file(in_path);
+      input_path_ = in_path;
+      auto t = Clock::now();
+      const dm::Pslg input = opt_.poly ? dm::read_poly(in_path) : dm::read_node(in_path);
+      phase("read", t);
+      first_index_ = input.first_index;
+      holes_ = input.holes;
+      regions_ = input.regions;
+
+      dm::TriangulateOptions topt;
+      topt.use_segments = opt_.poly;
+      topt.method = opt_.cdt_method;
+      topt.strict = opt_.strict;
+      topt.domain.fill = opt_.fill;
+      topt.domain.keep_convex_hull = opt_.convex_hull;
+      topt.domain.ignore_holes = opt_.ignore_holes;
+      topt.domain.regional_attributes = opt_.regional_attributes && opt_.poly;
+      topt.check_segments = opt_.check && opt_.poly;
+      mesh = dm::triangulate(input, topt, &stats);
+      if (opt_.poly) {
+        phase(std::string("constrained triangulation (") + std::string(dm::to_string(opt_.cdt_method)) + ")",
+              stats.triangulate_seconds, true);
+        phases_.push_back({"  of which segments", stats.cdt.segments_seconds});
+        if (topt.check_segments) phase("check segments", stats.check_seconds, true);
+        phase("domain (holes, regions)", stats.domain_seconds, true);
+      } else {
+        phase("Delaunay triangulation", stats.triangulate_seconds, true);
+        if (opt_.convex_hull) phase("hull segments", stats.domain_seconds, true);
+      }
+      phase("markers and attributes", stats.finish_seconds, true);
+      if (!opt_.quiet)
+        for (const std::string& w : stats.warnings) std::fprintf(stderr, "deltamesh: warning: %s\n", w.c_str());
+    }
 
     if (opt_.jettison) mesh.remove_unused_vertices();
 
     int status = kExitOk;
     if (opt_.check) {
-      t = Clock::now();
-      const dm::CheckReport report = dm::check(mesh);
+      auto t = Clock::now();
+      dm::CheckOptions copt;
+      // A point set's Delaunay triangulation covers its convex hull; a
+      // carved domain need not be convex; a mesh read with -r need not be
+      // Delaunay.
+      copt.convex_hull = !opt_.poly && !opt_.refine;
+      copt.delaunay = !opt_.refine && opt_.cdt_method != dm::CdtMethod::Ct;
+      dm::CheckReport report = dm::check(mesh, copt);
+      // With -p: every segment was a chain of constrained edges before
+      // carving (checked in the pipeline), and carving left a boundary made
+      // of segments only.
+      if (opt_.poly && !opt_.refine) {
+        for (const std::string& p : stats.segment_check.problems) report.problems.push_back("before carving: " + p);
+        for (const std::string& p : dm::check_domain_boundary(mesh)) report.problems.push_back(p);
+      }
       phase("check", t);
       if (!report.ok()) {
         std::fprintf(stderr, "deltamesh: -C: %s\n", report.summary().c_str());
         status = kExitCheckFailed;
-      } else if (!opt_.quiet) {
-        std::printf("Check: %s\n", report.summary().c_str());
+      } else {
+        check_summary_ = report.summary();
+        if (stats.segment_check.segments_checked)
+          check_summary_ += ", " + std::to_string(stats.segment_check.segments_checked) + " segments present";
       }
     }
 
-    t = Clock::now();
-    const std::string out_base =
-        name.base + (opt_.no_iteration ? "" : "." + std::to_string(name.iteration + 1));
+    auto t = Clock::now();
+    writing_ = true;
+    const std::string out_base = name.base + (opt_.no_iteration ? "" : "." + std::to_string(name.iteration + 1));
     dm::TriangleWriteOptions wopt;
-    wopt.first_index = opt_.zero_based ? 0 : input.first_index;
+    wopt.first_index = opt_.zero_based ? 0 : first_index_;
     wopt.write_markers = !opt_.no_markers;
     std::vector<std::string> written;
     auto emit = [&](bool enabled, const char* ext, auto writer) {
@@ -108,8 +159,11 @@ class Run {
       writer(mesh, path, wopt);
       written.push_back(path);
     };
+    // Triangle writes a .poly when it read one, and for a point set with -c.
+    const bool write_poly = !opt_.no_poly && (opt_.poly || opt_.convex_hull);
     emit(!opt_.no_node, ".node", [](auto& m, auto& p, auto& w) { dm::write_node(m, p, w); });
     emit(!opt_.no_ele, ".ele", [](auto& m, auto& p, auto& w) { dm::write_ele(m, p, w); });
+    emit(write_poly, ".poly", [](auto& m, auto& p, auto& w) { dm::write_poly(m, p, w); });
     emit(opt_.edges, ".edge", [](auto& m, auto& p, auto& w) { dm::write_edge(m, p, w); });
     emit(opt_.neighbors, ".neigh", [](auto& m, auto& p, auto& w) { dm::write_neigh(m, p, w); });
     if (opt_.svg_path) {
@@ -119,38 +173,123 @@ class Run {
       written.push_back(*opt_.svg_path);
     }
     phase("write", t);
+    phase("total", t_total);
 
-    if (!opt_.quiet) report(input.points.size(), stats, mesh, written);
+    if (!opt_.quiet) report(stats, mesh, written);
     return status;
   }
 
+  int first_index() const { return first_index_; }
+  const std::string& input_path() const { return input_path_; }
+  bool writing() const { return writing_; }
+
  private:
-  void phase(const char* name, Clock::time_point t0) {
-    phases_.push_back({name, std::chrono::duration<double>(Clock::now() - t0).count()});
+  // -r: FILE.node + FILE.ele (+ FILE.poly segments with -p), rebuilt as is.
+  dm::Mesh read_mesh(const std::string& in) {
+    const std::string node_path = in + ".node", ele_path = in + ".ele", poly_path = in + ".poly";
+    require_file(node_path);
+    require_file(ele_path);
+    if (opt_.poly) require_file(poly_path);
+    input_path_ = node_path;
+    auto t = Clock::now();
+    dm::Pslg nodes = dm::read_node(node_path);
+    first_index_ = nodes.first_index;
+    if (opt_.poly) {
+      input_path_ = poly_path;
+      dm::Pslg poly = dm::read_poly(poly_path);
+      if (poly.points.size() != nodes.points.size())
+        throw dm::InputError(poly_path + " lists " + std::to_string(poly.points.size()) + " vertices but " +
+                             node_path + " has " + std::to_string(nodes.points.size()));
+      nodes.segments = std::move(poly.segments);
+      holes_ = std::move(poly.holes);
+      regions_ = std::move(poly.regions);
+    }
+    input_path_ = ele_path;
+    const dm::EleData ele = dm::read_ele(ele_path, nodes.first_index);
+    phase("read", t);
+    input_path_ = node_path;
+    t = Clock::now();
+    dm::Mesh mesh = dm::mesh_from_triangles(nodes, ele.triangles, ele.num_attributes, ele.attributes);
+    if (opt_.convex_hull) {
+      // With -r, -c makes the mesh boundary (holes included) into segments.
+      for (dm::HalfEdgeId e = 0; e < mesh.triangle_vertices().size(); ++e)
+        if (mesh.twin(e) == dm::kNone && !mesh.is_constrained(e)) mesh.constrain_edge(e, 0);
+    }
+    phase("rebuild mesh", t);
+    return mesh;
   }
 
-  void report(std::size_t input_points, const dm::DelaunayStats& stats, const dm::Mesh& mesh,
-              const std::vector<std::string>& written) const {
-    std::size_t hull = 0;
+  void phase(const std::string& name, Clock::time_point t0) {
+    phases_.push_back({name, std::chrono::duration<double>(Clock::now() - t0).count()});
+  }
+  void phase(const std::string& name, double seconds, bool) { phases_.push_back({name, seconds}); }
+
+  void report(const dm::TriangulateStats& st, const dm::Mesh& mesh, const std::vector<std::string>& written) const {
+    std::size_t boundary = 0;
     for (dm::HalfEdgeId e = 0; e < mesh.triangle_vertices().size(); ++e)
-      if (mesh.twin(e) == dm::kNone) ++hull;
-    std::printf("Delaunay triangulation: %zu input vertices", input_points);
-    if (stats.duplicates) std::printf(" (%zu duplicates merged)", stats.duplicates);
-    std::printf(", %zu triangles, %zu hull edges\n", mesh.num_triangles(), hull);
+      if (mesh.twin(e) == dm::kNone) ++boundary;
+    if (opt_.refine) {
+      std::printf("Mesh read: %zu vertices, %zu triangles\n", mesh.num_vertices(), mesh.num_triangles());
+    } else if (opt_.poly) {
+      std::printf("Constrained Delaunay triangulation: %zu input vertices, %zu segments", st.input_vertices,
+                  st.input_segments);
+      if (st.input_holes) std::printf(", %zu holes", st.input_holes);
+      std::printf(" -> %zu triangles\n", mesh.num_triangles());
+    } else {
+      std::printf("Delaunay triangulation: %zu input vertices", st.input_vertices);
+      if (st.duplicate_vertices) std::printf(" (%zu duplicates merged)", st.duplicate_vertices);
+      std::printf(", %zu triangles, %zu hull edges\n", mesh.num_triangles(), boundary);
+    }
     for (const std::string& w : written) std::printf("  wrote %s\n", w.c_str());
+    if (!check_summary_.empty()) std::printf("Check: %s\n", check_summary_.c_str());
     if (opt_.verbose > 0) {
       std::printf("Statistics:\n");
-      std::printf("  vertices in output: %zu\n", mesh.num_vertices());
-      std::printf("  edges: %zu\n", (3 * mesh.num_triangles() + hull) / 2);
-      std::printf("  mesh memory: %.1f MB (%.1f bytes per triangle)\n", mesh.memory_bytes() / 1e6,
+      if (!opt_.refine) {
+        std::printf("  input vertices:            %zu\n", st.input_vertices);
+        std::printf("  duplicate vertices merged: %zu\n", st.duplicate_vertices);
+      }
+      if (opt_.poly && !opt_.refine) {
+        std::printf("  input segments:            %zu\n", st.input_segments);
+        std::printf("  segments already edges:    %zu (of the Delaunay triangulation)\n",
+                    st.cdt.segments_already_present);
+        std::printf("  segments recovered:        %zu (%zu flips)\n",
+                    st.cdt.segments_inserted - std::min(st.cdt.segments_inserted, st.cdt.segments_already_present),
+                    st.cdt.flips);
+        std::printf("  intersections resolved:    %zu (%zu vertices added)\n", st.cdt.intersections,
+                    st.steiner_vertices);
+        std::printf("  vertices on segments:      %zu\n", st.cdt.vertices_on_segments);
+        std::printf("  overlapping segments:      %zu merged\n", st.cdt.overlaps_merged);
+        std::printf("  zero-length segments:      %zu ignored\n", st.cdt.zero_length_segments);
+        std::printf("  holes:                     %zu (%zu used, %zu ignored)%s\n", st.input_holes,
+                    st.domain.holes_used, st.domain.holes_ignored, opt_.ignore_holes ? " -O: not applied" : "");
+        if (opt_.regional_attributes)
+          std::printf("  regions:                   %zu (%zu used, %zu ignored)\n", st.input_regions,
+                      st.domain.regions_used, st.domain.regions_ignored);
+        else
+          std::printf("  regions:                   %zu (not used without -A)\n", st.input_regions);
+        std::printf("  triangles removed:         %zu\n", st.domain.triangles_removed);
+        if (opt_.convex_hull) std::printf("  hull segments added:       %zu\n", st.domain.hull_segments_added);
+      }
+      std::printf("  vertices in output:        %zu\n", mesh.num_vertices());
+      std::printf("  triangles:                 %zu\n", mesh.num_triangles());
+      std::printf("  edges:                     %zu (%zu on the boundary)\n", (3 * mesh.num_triangles() + boundary) / 2,
+                  boundary);
+      if (!opt_.refine) std::printf("  segments in output:        %zu\n", st.segments);
+      std::printf("  mesh memory:               %.1f MB (%.1f bytes per triangle)\n", mesh.memory_bytes() / 1e6,
                   mesh.num_triangles() ? double(mesh.memory_bytes()) / double(mesh.num_triangles()) : 0.0);
       std::printf("Timings:\n");
-      for (const Phase& p : phases_) std::printf("  %-22s %9.3f ms\n", p.name, p.seconds * 1e3);
+      for (const Phase& p : phases_) std::printf("  %-38s %9.3f ms\n", p.name.c_str(), p.seconds * 1e3);
     }
   }
 
   const Options& opt_;
   std::vector<Phase> phases_;
+  int first_index_ = 0;
+  std::string check_summary_;  // -C passed: what was checked
+  bool writing_ = false;  // an IoError before this is an input error
+  std::string input_path_;
+  std::vector<dm::Point> holes_;
+  std::vector<dm::RegionSeed> regions_;
 };
 
 }  // namespace
@@ -171,21 +310,37 @@ int main(int argc, char** argv) {
     std::printf("deltamesh %s\n", dm::kVersion);
     return kExitOk;
   }
-  if (opt.input.empty()) {
-    std::fprintf(stderr, "deltamesh: no input file (usage: deltamesh [-switches] FILE.node; see --help)\n");
+  if (!opt.unavailable.empty()) {
+    for (const std::string& s : opt.unavailable)
+      std::fprintf(stderr, "deltamesh: switch %s is not available in this version of deltamesh\n", s.c_str());
     return kExitUsage;
   }
+  if (opt.input.empty()) {
+    std::fprintf(stderr, "deltamesh: no input file (usage: deltamesh [-switches] FILE; see --help)\n");
+    return kExitUsage;
+  }
+  Run run(opt);
   try {
-    return Run(opt).execute();
+    return run.execute();
+  } catch (const MissingInput& e) {
+    std::fprintf(stderr, "deltamesh: cannot open input file '%s': no such file\n", e.path().c_str());
+    return kExitInput;
   } catch (const dm::ParseError& e) {
     std::fprintf(stderr, "deltamesh: %s\n", e.what());
     return kExitInput;
+  } catch (const dm::IntersectingSegments& e) {
+    std::fprintf(stderr,
+                 "deltamesh: %s: segments %zu and %zu cross (--strict; without it they are split where they cross)\n",
+                 run.input_path().c_str(), e.first() + static_cast<std::size_t>(run.first_index()),
+                 e.second() + static_cast<std::size_t>(run.first_index()));
+    return kExitInput;
   } catch (const dm::InputError& e) {
-    std::fprintf(stderr, "deltamesh: %s: %s\n", opt.input.c_str(), e.what());
+    std::fprintf(stderr, "deltamesh: %s: %s\n", run.input_path().empty() ? opt.input.c_str() : run.input_path().c_str(),
+                 e.what());
     return kExitInput;
   } catch (const dm::IoError& e) {
     std::fprintf(stderr, "deltamesh: %s\n", e.what());
-    return kExitOutput;
+    return run.writing() ? kExitOutput : kExitInput;
   } catch (const std::bad_alloc&) {
     std::fprintf(stderr, "deltamesh: out of memory\n");
     return kExitInternal;

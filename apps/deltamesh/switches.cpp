@@ -1,66 +1,130 @@
 #include "deltamesh/switches.hpp"
 
 #include <cctype>
+#include <charconv>
+#include <cmath>
 #include <string_view>
 
 namespace deltamesh::cli {
 
 namespace {
 
-// Triangle switches that exist but are not built yet, with what they do.
-std::string_view planned_switch(char c) {
-  switch (c) {
-    case 'r': return "refine a previously generated mesh";
-    case 'q': return "quality mesh generation (minimum angle)";
-    case 'a': return "maximum triangle area constraints";
-    case 'u': return "user-defined area constraint";
-    case 'A': return "regional attributes";
-    case 'c': return "enclose the convex hull with segments";
-    case 'D': return "conforming Delaunay";
-    case 'v': return "Voronoi diagram output";
-    case 'g': return "OFF (Geomview) output";
-    case 'P': return "no .poly output";
-    case 'O': return "ignore holes";
-    case 'X': return "no exact arithmetic";
-    case 'o': return "second-order (six-node) triangles";
-    case 'Y': return "no Steiner points on the boundary";
-    case 'S': return "Steiner point budget";
-    case 'i': return "incremental algorithm selection";
-    case 'F': return "Fortune's sweepline selection";
-    case 'l': return "vertical cuts only";
-    case 's': return "segment splitting";
-    default: return {};
-  }
-}
+// A switch string is Triangle's: letters, each optionally followed by a
+// number with no space (-pq30.5a0.01zQ). Numbers are digits and '.' only, so
+// a letter that follows a number (like the 'e' in -a0.1e) is the next switch.
+class SwitchString {
+ public:
+  SwitchString(std::string_view s, Options& o) : s_(s), o_(o) {}
 
-void parse_switch_string(std::string_view s, Options& o) {
-  for (std::size_t i = 0; i < s.size(); ++i) {
-    const char c = s[i];
-    switch (c) {
-      case 'p': o.poly = true; break;
-      case 'z': o.zero_based = true; break;
-      case 'Q': o.quiet = true; break;
-      case 'V': ++o.verbose; break;
-      case 'C': o.check = true; break;
-      case 'N': o.no_node = true; break;
-      case 'E': o.no_ele = true; break;
-      case 'I': o.no_iteration = true; break;
-      case 'j': o.jettison = true; break;
-      case 'e': o.edges = true; break;
-      case 'n': o.neighbors = true; break;
-      case 'B': o.no_markers = true; break;
-      case 'h': o.help = true; break;
-      default: {
-        const std::string_view planned = planned_switch(c);
-        if (!planned.empty())
-          throw UsageError{std::string("switch -") + c + " (" + std::string(planned) +
-                           ") is not available in this version of deltamesh"};
-        throw UsageError{std::string("unknown switch -") + c + " in '-" + std::string(s) +
-                         "' (see deltamesh --help)"};
+  void parse() {
+    while (i_ < s_.size()) {
+      const char c = s_[i_++];
+      switch (c) {
+        case 'p': o_.poly = true; break;
+        case 'r': o_.refine = true; break;
+        case 'c': o_.convex_hull = true; break;
+        case 'A': o_.regional_attributes = true; break;
+        case 'O': o_.ignore_holes = true; break;
+        case 'P': o_.no_poly = true; break;
+        case 'z': o_.zero_based = true; break;
+        case 'Q': o_.quiet = true; break;
+        case 'V': ++o_.verbose; break;
+        case 'C': o_.check = true; break;
+        case 'N': o_.no_node = true; break;
+        case 'E': o_.no_ele = true; break;
+        case 'I': o_.no_iteration = true; break;
+        case 'j': o_.jettison = true; break;
+        case 'e': o_.edges = true; break;
+        case 'n': o_.neighbors = true; break;
+        case 'B': o_.no_markers = true; break;
+        case 'h': o_.help = true; break;
+        case 'i': case 'F': case 'l': case 'X': break;  // accepted, no effect
+        case 'q': {
+          o_.quality = true;
+          const std::string_view num = number();
+          if (!num.empty()) o_.min_angle = to_double(c, num);
+          planned(c, num, "quality mesh generation (minimum angle)");
+          break;
+        }
+        case 'a': {
+          o_.area = true;
+          const std::string_view num = number();
+          if (num.empty()) {
+            o_.area_from_regions = true;
+          } else {
+            o_.max_area = to_double(c, num);
+            if (!(*o_.max_area > 0))
+              throw UsageError{"-a" + std::string(num) + ": the maximum area must be positive"};
+          }
+          planned(c, num, "maximum triangle area");
+          break;
+        }
+        case 'S': {
+          const std::string_view num = digits();
+          unsigned long long n = 0;
+          if (!num.empty()) {
+            const auto r = std::from_chars(num.data(), num.data() + num.size(), n);
+            if (r.ec != std::errc() || r.ptr != num.data() + num.size())
+              throw UsageError{"-S" + std::string(num) + ": the Steiner point budget is too large"};
+          }
+          o_.steiner_budget = n;
+          planned(c, num, "Steiner point budget");
+          break;
+        }
+        case 'o': {
+          if (i_ >= s_.size() || s_[i_] != '2')
+            throw UsageError{"switch -o must be followed by 2 (-o2: second-order, six-node triangles)"};
+          ++i_;
+          o_.order = 2;
+          planned(c, "2", "second-order (six-node) triangles");
+          break;
+        }
+        case 'Y':
+          ++o_.no_boundary_steiner;
+          planned(c, {}, "no Steiner points on the boundary");
+          break;
+        case 'u': o_.user_area = true; planned(c, {}, "user-defined triangle size constraint"); break;
+        case 'D': o_.conforming_delaunay = true; planned(c, {}, "conforming Delaunay"); break;
+        case 'v': o_.voronoi = true; planned(c, {}, "Voronoi diagram output"); break;
+        case 'g': o_.geomview = true; planned(c, {}, "OFF (Geomview) output"); break;
+        case 's': o_.split_segments = true; planned(c, {}, "segment splitting"); break;
+        default:
+          if (std::isdigit(static_cast<unsigned char>(c)) || c == '.')
+            throw UsageError{std::string("number '") + c + "' in '-" + std::string(s_) +
+                             "' does not follow a switch that takes one (q, a, S)"};
+          throw UsageError{std::string("unknown switch -") + c + " in '-" + std::string(s_) +
+                           "' (see deltamesh --help)"};
       }
     }
   }
-}
+
+ private:
+  // The run of digits and '.' at the current position (possibly empty).
+  std::string_view number() {
+    const std::size_t start = i_;
+    while (i_ < s_.size() && (std::isdigit(static_cast<unsigned char>(s_[i_])) || s_[i_] == '.')) ++i_;
+    return s_.substr(start, i_ - start);
+  }
+  std::string_view digits() {
+    const std::size_t start = i_;
+    while (i_ < s_.size() && std::isdigit(static_cast<unsigned char>(s_[i_]))) ++i_;
+    return s_.substr(start, i_ - start);
+  }
+  static double to_double(char c, std::string_view num) {
+    double v = 0;
+    const auto r = std::from_chars(num.data(), num.data() + num.size(), v);
+    if (r.ec != std::errc() || r.ptr != num.data() + num.size() || !std::isfinite(v))
+      throw UsageError{std::string("-") + c + std::string(num) + ": '" + std::string(num) + "' is not a number"};
+    return v;
+  }
+  void planned(char c, std::string_view num, const char* what) {
+    o_.unavailable.push_back(std::string("-") + c + std::string(num) + " (" + what + ")");
+  }
+
+  std::string_view s_;
+  Options& o_;
+  std::size_t i_ = 0;
+};
 
 }  // namespace
 
@@ -74,25 +138,51 @@ Options parse_arguments(const std::vector<std::string>& args) {
       if (i + 1 >= args.size()) throw UsageError{"option " + name + " needs a value"};
       return args[++i];
     };
+    auto no_value = [&](const std::string& name) {
+      if (a.find('=') != std::string::npos) throw UsageError{"option " + name + " takes no value"};
+    };
     if (a.rfind("--", 0) == 0) {
       const std::string name = a.substr(0, a.find('='));
-      if (name == "--help") o.help = true;
-      else if (name == "--version") o.version = true;
-      else if (name == "--svg") o.svg_path = value(name);
-      else if (name == "--quiet") o.quiet = true;
-      else if (name == "--verbose") ++o.verbose;
-      else if (name == "--check") o.check = true;
-      else if (name == "--zero-based") o.zero_based = true;
-      else if (name == "--jettison") o.jettison = true;
-      else if (name == "--edges") o.edges = true;
-      else if (name == "--neighbors") o.neighbors = true;
-      else if (name == "--no-node") o.no_node = true;
-      else if (name == "--no-ele") o.no_ele = true;
-      else if (name == "--no-iteration") o.no_iteration = true;
-      else if (name == "--no-markers") o.no_markers = true;
-      else throw UsageError{"unknown option " + name + " (see deltamesh --help)"};
+      if (name == "--svg") {
+        o.svg_path = value(name);
+      } else if (name == "--cdt") {
+        const std::string v = value(name);
+        const std::optional<CdtMethod> m = v == "fast"     ? std::optional(CdtMethod::Fast)
+                                           : v == "ct"      ? std::optional(CdtMethod::Ct)
+                                           : v == "lawson"  ? std::optional(CdtMethod::Lawson)
+                                           : v == "lifting" ? std::optional(CdtMethod::Lifting)
+                                                            : std::nullopt;
+        if (!m) throw UsageError{"--cdt=" + v + ": the method must be fast, ct, lawson or lifting"};
+        o.cdt_method = *m;
+      } else if (name == "--fill") {
+        const std::string v = value(name);
+        if (v == "holes") o.fill = FillRule::Holes;
+        else if (v == "evenodd" || v == "even-odd") o.fill = FillRule::EvenOdd;
+        else throw UsageError{"--fill=" + v + ": the rule must be holes or evenodd"};
+      } else {
+        no_value(name);
+        if (name == "--help") o.help = true;
+        else if (name == "--version") o.version = true;
+        else if (name == "--strict") o.strict = true;
+        else if (name == "--quiet") o.quiet = true;
+        else if (name == "--verbose") ++o.verbose;
+        else if (name == "--check") o.check = true;
+        else if (name == "--zero-based") o.zero_based = true;
+        else if (name == "--jettison") o.jettison = true;
+        else if (name == "--edges") o.edges = true;
+        else if (name == "--neighbors") o.neighbors = true;
+        else if (name == "--no-node") o.no_node = true;
+        else if (name == "--no-ele") o.no_ele = true;
+        else if (name == "--no-poly") o.no_poly = true;
+        else if (name == "--no-iteration") o.no_iteration = true;
+        else if (name == "--no-markers") o.no_markers = true;
+        else if (name == "--convex-hull") o.convex_hull = true;
+        else if (name == "--regional-attributes") o.regional_attributes = true;
+        else if (name == "--ignore-holes") o.ignore_holes = true;
+        else throw UsageError{"unknown option " + name + " (see deltamesh --help)"};
+      }
     } else if (a.size() > 1 && a[0] == '-') {
-      parse_switch_string(std::string_view(a).substr(1), o);
+      SwitchString(std::string_view(a).substr(1), o).parse();
     } else {
       if (!o.input.empty()) throw UsageError{"more than one input file: '" + o.input + "' and '" + a + "'"};
       o.input = a;
@@ -104,38 +194,60 @@ Options parse_arguments(const std::vector<std::string>& args) {
 std::string help_text() {
   return R"(deltamesh - two-dimensional Delaunay triangulation and mesh generation
 
-Usage: deltamesh [-switches] [--long-options] FILE[.node]
+Usage: deltamesh [-switches] [--long-options] FILE
 
-Reads FILE.node and writes FILE.1.node and FILE.1.ele (Triangle's formats and
-naming: an input FILE.1.node gives FILE.2.*).
+Reads FILE.node (or FILE.poly with -p, or FILE.node + FILE.ele with -r) and
+writes FILE.1.node and FILE.1.ele, plus FILE.1.poly with -p (Triangle's formats
+and naming: an input FILE.1.node gives FILE.2.*).
 
-Switches (Triangle's, combinable as one string, e.g. -zQVC):
-  -z  number vertices and triangles from zero          --zero-based
-  -e  also write FILE.1.edge (edges with boundary markers) --edges
-  -n  also write FILE.1.neigh (triangle neighbours)     --neighbors
-  -N  do not write the .node file                      --no-node
-  -E  do not write the .ele file                       --no-ele
-  -I  no iteration number: write FILE.node, FILE.ele    --no-iteration
-  -j  drop duplicate and unused vertices from the output --jettison
-  -B  no boundary markers in the output                --no-markers
-  -C  check the mesh (topology, orientation, Delaunay)  --check
-  -Q  quiet: print nothing unless there is an error     --quiet
-  -V  verbose: statistics and timings per phase        --verbose
-  -h  this help                                        --help
+Switches (Triangle's, combinable as one string, e.g. -pczV):
+  -p  read FILE.poly: segments, holes, regional attributes; constrained
+      Delaunay triangulation of the domain the segments enclose
+  -r  read a mesh (FILE.node, FILE.ele; with -p also FILE.poly for its
+      segments) and write it again as the next iteration (refinement of it
+      is not built yet)
+  -c  keep the whole convex hull and make its edges segments  --convex-hull
+  -A  regional attribute per triangle from the .poly regions  --regional-attributes
+  -O  ignore the holes of the .poly file                      --ignore-holes
+  -P  do not write the .poly file                             --no-poly
+  -z  number vertices and triangles from zero                 --zero-based
+  -e  also write FILE.1.edge (edges with boundary markers)    --edges
+  -n  also write FILE.1.neigh (triangle neighbours)           --neighbors
+  -N  do not write the .node file                             --no-node
+  -E  do not write the .ele file                              --no-ele
+  -I  no iteration number: write FILE.node, FILE.ele           --no-iteration
+  -j  drop duplicate and unused vertices from the output      --jettison
+  -B  no boundary markers in the output                       --no-markers
+  -C  check the mesh (topology, orientation, Delaunay)        --check
+  -Q  quiet: print nothing unless there is an error           --quiet
+  -V  verbose: counts and timings per phase                   --verbose
+  -h  this help                                               --help
+  -i -F -l -X are accepted and have no effect.
+Not available yet (parsed, then refused): -q[angle] -a[area] -u -D -S[n] -Y
+-o2 -s -v -g.
+
 Long options:
-  --svg PATH    write an SVG picture of the mesh
-  --version     print the version
+  --cdt=METHOD     segment insertion: fast (default), ct (flips, not always
+                   Delaunay), lawson (ct + Lawson flips), lifting (flips ordered
+                   by the lifting map)
+  --fill=RULE      holes (default: Triangle's hole points and exterior) or
+                   evenodd (keep odd nesting depth; no hole points needed)
+  --strict         crossing segments are an error instead of being split
+  --svg PATH       write an SVG picture of the mesh
+  --version        print the version
 
 Examples:
-  deltamesh points.node                 Delaunay triangulation -> points.1.node, points.1.ele
-  deltamesh -zenV points.node           zero-based, with .edge and .neigh, verbose
-  deltamesh -QC --svg mesh.svg pts.node quiet, self-check, and a picture
+  deltamesh points.node              Delaunay triangulation -> points.1.node, points.1.ele
+  deltamesh -pV plate.poly           mesh a PSLG with holes, verbose -> plate.1.{node,ele,poly}
+  deltamesh -pcA plate               whole convex hull, regional attributes
+  deltamesh -rpe plate.1             rebuild plate.1 with its segments -> plate.2.*, with edges
+  deltamesh -p --fill=evenodd map    polygons with nested rings and no hole points
 
 Exit codes:
-  0 success, 1 usage error, 2 input error (file missing or malformed, or no
-  triangle possible), 3 budget reached before the requested quality,
-  4 output file could not be written, 5 -C found the mesh invalid,
-  70 internal error (a bug; please report it).
+  0 success (an empty domain is a success), 1 usage error or a switch not
+  available yet, 2 input error (file missing or malformed, or no triangle
+  possible), 3 budget reached before the requested quality, 4 output file could
+  not be written, 5 -C found the mesh invalid, 70 internal error (a bug).
 )";
 }
 

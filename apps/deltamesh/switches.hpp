@@ -4,12 +4,15 @@
 #include <string>
 #include <vector>
 
+#include "deltamesh/cdt.hpp"
+#include "deltamesh/domain.hpp"
+
 namespace deltamesh::cli {
 
 // Documented exit codes.
 enum ExitCode : int {
   kExitOk = 0,
-  kExitUsage = 1,        // bad switches or arguments
+  kExitUsage = 1,        // bad switches or arguments, or a switch not available yet
   kExitInput = 2,        // input file missing, unreadable or malformed; input not meshable
   kExitBudget = 3,       // a budget stopped refinement before the requested quality
   kExitOutput = 4,       // an output file could not be written
@@ -18,21 +21,50 @@ enum ExitCode : int {
 };
 
 struct Options {
-  // Triangle switches.
-  bool poly = false;          // -p
-  bool zero_based = false;    // -z
-  bool quiet = false;         // -Q
-  int verbose = 0;            // -V (repeatable)
-  bool check = false;         // -C
-  bool no_node = false;       // -N
-  bool no_ele = false;        // -E
-  bool no_iteration = false;  // -I
-  bool jettison = false;      // -j
-  bool edges = false;         // -e
-  bool neighbors = false;     // -n
-  bool no_markers = false;    // -B
-  bool help = false;          // -h / --help
+  // Triangle switches that work.
+  bool poly = false;                 // -p  read FILE.poly (segments, holes, regions)
+  bool refine = false;               // -r  read a mesh: FILE.node + FILE.ele (rebuilt, not refined yet)
+  bool convex_hull = false;          // -c
+  bool regional_attributes = false;  // -A
+  bool ignore_holes = false;         // -O
+  bool no_poly = false;              // -P
+  bool zero_based = false;           // -z
+  bool quiet = false;                // -Q
+  int verbose = 0;                   // -V (repeatable)
+  bool check = false;                // -C
+  bool no_node = false;              // -N
+  bool no_ele = false;               // -E
+  bool no_iteration = false;         // -I
+  bool jettison = false;             // -j
+  bool edges = false;                // -e
+  bool neighbors = false;            // -n
+  bool no_markers = false;           // -B
+  bool help = false;                 // -h / --help
+
+  // Triangle switches that are parsed (numbers included) but whose feature
+  // is not built yet; `unavailable` names each one given, and the run stops
+  // with a usage error while it is not empty.
+  bool quality = false;                       // -q[angle]
+  std::optional<double> min_angle;            //   the angle after q
+  bool area = false;                          // -a[area]
+  std::optional<double> max_area;             //   the area after a (without: per-region / .area bounds)
+  bool area_from_regions = false;             //   -a given without a number
+  bool user_area = false;                     // -u
+  std::optional<unsigned long long> steiner_budget;  // -S[n]
+  int order = 1;                              // -o2
+  int no_boundary_steiner = 0;                // -Y, -YY
+  bool conforming_delaunay = false;           // -D
+  bool voronoi = false;                       // -v
+  bool geomview = false;                      // -g
+  bool split_segments = false;                // -s
+  std::vector<std::string> unavailable;       // e.g. "-q30 (quality mesh generation)"
+  // Accepted for compatibility, no effect: -i -F (Triangle's algorithm
+  // choices), -l (divide-and-conquer cuts), -X (exact arithmetic is always on).
+
   // Long options.
+  CdtMethod cdt_method = CdtMethod::Fast;     // --cdt=fast|ct|lawson|lifting
+  FillRule fill = FillRule::Holes;            // --fill=holes|evenodd
+  bool strict = false;                        // --strict
   bool version = false;
   std::optional<std::string> svg_path;
   std::string input;  // the FILE argument as given

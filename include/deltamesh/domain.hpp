@@ -3,6 +3,8 @@
 // attributes, area bounds).
 #pragma once
 #include <cstddef>
+#include <string>
+#include <vector>
 
 #include "deltamesh/mesh.hpp"
 #include "deltamesh/pslg.hpp"
@@ -10,26 +12,56 @@
 namespace deltamesh {
 
 enum class FillRule {
-  Holes,    // Triangle's rule: remove what hole points (and the exterior) reach, stopping at segments
-  EvenOdd,  // keep triangles whose nesting depth (segments crossed from outside) is odd
+  // Triangle's rule: remove what the exterior and the hole points reach by
+  // flood fill, never crossing a segment.
+  Holes,
+  // Keep triangles whose nesting depth (the fewest segments crossed on a
+  // path from outside the convex hull) is odd: rings need no hole points.
+  // Hole points, when given, still remove what they reach.
+  EvenOdd,
 };
 
 struct DomainOptions {
   FillRule fill = FillRule::Holes;
-  bool keep_convex_hull = false;      // -c: keep the exterior (the convex hull), closed by segments
-  bool ignore_holes = false;          // -O
+  // -c: keep the whole convex hull (the exterior is not removed; under
+  // EvenOdd, depth-0 triangles are kept) and constrain the hull edges, so
+  // they are written as segments.
+  bool keep_convex_hull = false;
+  bool ignore_holes = false;          // -O: hole points are not used
   bool regional_attributes = false;   // -A: one attribute per triangle from the region seeds
   bool regional_area_bounds = false;  // -a without a number: area bounds from the region seeds
 };
 
 struct DomainStats {
   std::size_t triangles_removed = 0;
-  std::size_t holes_ignored = 0;  // hole points outside the domain or on a segment
+  std::size_t triangles_kept = 0;
+  std::size_t holes_used = 0;        // hole points that located inside the triangulation
+  std::size_t holes_ignored = 0;     // hole points outside the hull, on a vertex or on a segment
+  std::size_t regions_used = 0;      // region seeds that located in a kept triangle
+  std::size_t regions_ignored = 0;   // region seeds outside the domain, on a vertex or on a segment
+  std::size_t hull_segments_added = 0;  // -c: hull edges that were not segments yet
+  double seconds = 0.0;
 };
 
-// Removes the triangles outside the domain and compacts the mesh. Regional
-// attributes go to the triangle attributes (one per triangle when asked);
-// area bounds to per-triangle bounds (see Mesh triangle attributes docs).
+// Removes the triangles outside the domain and compacts the mesh.
+//
+// `mesh` must be closed (ghost triangles present, as constrained_triangulation
+// returns it); segments are its constrained edges. Hole points and region
+// seeds are located exactly: a point strictly inside a triangle or on an
+// unconstrained edge selects that segment-bounded region; a point on a
+// vertex, on a segment or outside the convex hull is ignored and counted.
+//
+// Regional attributes (when asked) become triangle attribute 0 (one per
+// triangle, 0 where no seed reaches); regional area bounds become the
+// per-triangle area bounds. When several seeds fall in one region the last
+// one wins, as in Triangle. Removing every triangle is not an error: the
+// result is an empty mesh that still holds the vertices.
 void carve_domain(Mesh& mesh, const Pslg& pslg, const DomainOptions& options = {}, DomainStats* stats = nullptr);
+
+// The invariant carving leaves: every boundary edge of the (compacted) mesh
+// is a segment, since removal stops only at segments and -c makes the hull
+// edges segments. Returns the problems found (empty: fine), at most
+// `max_problems`.
+std::vector<std::string> check_domain_boundary(const Mesh& mesh, std::size_t max_problems = 20);
 
 }  // namespace deltamesh

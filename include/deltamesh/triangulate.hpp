@@ -1,0 +1,84 @@
+// The one-call pipeline: a PSLG in, a finished mesh out.
+//
+//   Pslg  --(Delaunay of the vertices | constrained triangulation)-->
+//         --(carve_domain: exterior, holes, regions)-->
+//         --(refinement: a later issue)-->
+//         --(vertex markers and attributes per Triangle's rules)--> Mesh
+#pragma once
+#include <cstddef>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "deltamesh/cdt.hpp"
+#include "deltamesh/delaunay.hpp"
+#include "deltamesh/domain.hpp"
+#include "deltamesh/mesh.hpp"
+#include "deltamesh/pslg.hpp"
+#include "deltamesh/validate.hpp"
+
+namespace deltamesh {
+
+struct TriangulateOptions {
+  // true: segments, holes and regions are used (Triangle's -p): the result
+  // is the constrained Delaunay triangulation carved to the domain.
+  // false: the Delaunay triangulation of the vertices only (segments, holes
+  // and regions are ignored; -c still turns the hull edges into segments).
+  bool use_segments = true;
+  CdtMethod method = CdtMethod::Fast;  // --cdt=
+  bool strict = false;                 // --strict: crossing segments are an error
+  DomainOptions domain;                // -c -O -A, --fill=
+  // Validate the constrained triangulation before carving (every segment a
+  // chain of constrained edges, constrained Delaunay unless method is Ct):
+  // after carving, segments whose both sides were removed are gone, so this
+  // is where their presence is checked (-C). Result in stats.segment_check.
+  bool check_segments = false;
+  // Refinement options (-q -a -S ...) will live here.
+};
+
+struct TriangulateStats {
+  std::size_t input_vertices = 0;
+  std::size_t input_segments = 0;
+  std::size_t input_holes = 0;
+  std::size_t input_regions = 0;
+  std::size_t duplicate_vertices = 0;  // merged with an earlier vertex (left in no triangle)
+  std::size_t steiner_vertices = 0;    // vertices added where segments cross
+  CdtStats cdt;                        // segment insertion (with -p)
+  DomainStats domain;                  // carving (with -p)
+  std::size_t vertices = 0;            // in the result (input + added)
+  std::size_t triangles = 0;
+  std::size_t segments = 0;            // constrained edges in the result
+  CheckReport segment_check;           // with options.check_segments
+  double check_seconds = 0.0;          // ... its time
+  double triangulate_seconds = 0.0;    // Delaunay or constrained triangulation
+  double domain_seconds = 0.0;
+  double finish_seconds = 0.0;         // markers and attributes
+  double total_seconds = 0.0;
+  std::vector<std::string> warnings;   // ignored hole points, zero-length segments, empty domain, ...
+};
+
+// Meshes `pslg`. Vertex ids 0..n-1 of the result are the input's (duplicates
+// stay as vertices in no triangle, like Triangle, until -j); vertices added
+// where segments cross follow.
+//
+// Vertex markers follow Triangle's documented rule: a nonzero input marker is
+// kept; otherwise a vertex on a segment with a nonzero marker takes it (the
+// first such segment in input order, then any); otherwise a vertex on the mesh
+// boundary gets 1; otherwise 0. Vertex attributes are copied; a vertex added
+// where segments cross gets them interpolated linearly along a segment
+// through it. Throws InputError (and IntersectingSegments under strict).
+Mesh triangulate(const Pslg& pslg, const TriangulateOptions& options = {}, TriangulateStats* stats = nullptr);
+
+// Rebuilds a mesh from a triangle list, as Triangle's -r reads FILE.node and
+// FILE.ele: points, markers and attributes from `nodes`, triangles as 0-based
+// vertex triples (either orientation), `num_attributes` attributes per
+// triangle. Segments of `nodes` (from a .poly) become constrained edges with
+// their markers; each must be an edge, or a chain of collinear edges, of the
+// mesh. The result is compacted (no ghost triangles). Throws InputError for a
+// vertex id out of range, a degenerate triangle, an edge shared by more than
+// two triangles or triangles that overlap across an edge, and a segment that
+// is not in the mesh.
+Mesh mesh_from_triangles(const Pslg& nodes, std::span<const VertexId> triangles, std::size_t num_attributes = 0,
+                         std::span<const double> attributes = {});
+
+}  // namespace deltamesh

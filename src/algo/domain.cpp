@@ -1,0 +1,291 @@
+// The meshing domain, decided per segment-bounded region.
+//
+// The real triangles of a closed constrained triangulation fall into regions:
+// the connected pieces left when every constrained edge is cut. Every rule
+// here is a rule about regions, so they are labelled once (O(n)) and then:
+//  - Holes: a region is removed when it touches the outside of the convex
+//    hull across an unconstrained hull edge (unless -c), or when a hole point
+//    lies in it. This is Triangle's flood fill from the exterior and from the
+//    hole points, stopping at segments.
+//  - EvenOdd: a region's depth is the fewest segments crossed on a way from
+//    outside the hull (a breadth-first search over the region graph); odd
+//    depth is kept.
+//  - Region seeds: the last seed lying in a region gives it its attribute and
+//    area bound, which is what Triangle's successive floods amount to.
+#include "deltamesh/domain.hpp"
+
+#include <chrono>
+#include <string>
+#include <vector>
+
+namespace deltamesh {
+
+namespace {
+
+constexpr std::uint32_t kNoRegion = kNone;
+
+// Regions of the real triangles: label per triangle slot (kNoRegion for
+// ghost and dead slots) and the number of regions.
+struct Regions {
+  std::vector<std::uint32_t> label;
+  std::uint32_t count = 0;
+};
+
+Regions label_regions(const Mesh& mesh) {
+  Regions r;
+  const std::size_t slots = mesh.num_triangle_slots();
+  r.label.assign(slots, kNoRegion);
+  std::vector<TriId> stack;
+  for (TriId s = 0; s < slots; ++s) {
+    if (r.label[s] != kNoRegion || !mesh.is_real(s)) continue;
+    const std::uint32_t id = r.count++;
+    r.label[s] = id;
+    stack.push_back(s);
+    while (!stack.empty()) {
+      const TriId t = stack.back();
+      stack.pop_back();
+      for (HalfEdgeId e = 3 * t; e < 3 * t + 3; ++e) {
+        if (mesh.is_constrained(e)) continue;
+        const HalfEdgeId f = mesh.twin(e);
+        if (f == kNone) continue;
+        const TriId u = tri_of(f);
+        if (r.label[u] != kNoRegion || !mesh.is_real(u)) continue;
+        r.label[u] = id;
+        stack.push_back(u);
+      }
+    }
+  }
+  return r;
+}
+
+// The real half-edge of a ghost triangle's finite edge, seen from the real
+// triangle inside the hull (kNone if the ghost is malformed).
+HalfEdgeId hull_half_edge(const Mesh& mesh, TriId ghost) {
+  for (HalfEdgeId e = 3 * ghost; e < 3 * ghost + 3; ++e) {
+    if (mesh.origin(e) == kInfinite || mesh.dest(e) == kInfinite) continue;
+    const HalfEdgeId f = mesh.twin(e);
+    if (f != kNone && mesh.is_real(tri_of(f))) return f;
+  }
+  return kNone;
+}
+
+// The region a point selects, or kNoRegion when it lies outside the hull, on
+// a vertex or on a segment. `hint` carries the last located triangle.
+std::uint32_t region_of_point(const Mesh& mesh, const Regions& regions, const Point& p, TriId& hint) {
+  const Location loc = mesh.locate(p, hint);
+  switch (loc.kind) {
+    case Location::Kind::InTriangle:
+      hint = loc.tri;
+      return regions.label[loc.tri];
+    case Location::Kind::OnEdge: {
+      hint = loc.tri;
+      if (mesh.is_constrained(loc.edge)) return kNoRegion;
+      // Both sides of an unconstrained edge are one region (or the far side
+      // is outside the hull).
+      const TriId t = tri_of(loc.edge);
+      if (mesh.is_real(t)) return regions.label[t];
+      const HalfEdgeId f = mesh.twin(loc.edge);
+      return f != kNone && mesh.is_real(tri_of(f)) ? regions.label[tri_of(f)] : kNoRegion;
+    }
+    case Location::Kind::OnVertex:
+      hint = loc.tri;
+      return kNoRegion;
+    case Location::Kind::Outside:
+      return kNoRegion;
+  }
+  return kNoRegion;
+}
+
+// Nesting depth of every region: the fewest segments crossed from outside
+// the convex hull. Regions meeting an unconstrained hull edge have depth 0,
+// regions behind a constrained hull edge at most 1; each constrained edge
+// between two regions adds one.
+std::vector<std::uint32_t> region_depths(const Mesh& mesh, const Regions& regions) {
+  constexpr std::uint32_t kUnset = kNone;
+  std::vector<std::uint32_t> depth(regions.count, kUnset);
+  // Constrained edges between different regions: the region graph.
+  std::vector<std::uint32_t> degree(regions.count + 1, 0);
+  const std::size_t slots = mesh.num_triangle_slots();
+  auto neighbour_region = [&](HalfEdgeId e) -> std::uint32_t {
+    const HalfEdgeId f = mesh.twin(e);
+    if (f == kNone) return kNoRegion;
+    return regions.label[tri_of(f)];
+  };
+  for (TriId t = 0; t < slots; ++t) {
+    const std::uint32_t a = regions.label[t];
+    if (a == kNoRegion) continue;
+    for (HalfEdgeId e = 3 * t; e < 3 * t + 3; ++e) {
+      if (!mesh.is_constrained(e)) continue;
+      const std::uint32_t b = neighbour_region(e);
+      if (b != kNoRegion && b != a) ++degree[a + 1];
+    }
+  }
+  for (std::uint32_t i = 0; i < regions.count; ++i) degree[i + 1] += degree[i];
+  std::vector<std::uint32_t> adj(degree[regions.count]);
+  std::vector<std::uint32_t> fill(degree.begin(), degree.end() - 1);
+  for (TriId t = 0; t < slots; ++t) {
+    const std::uint32_t a = regions.label[t];
+    if (a == kNoRegion) continue;
+    for (HalfEdgeId e = 3 * t; e < 3 * t + 3; ++e) {
+      if (!mesh.is_constrained(e)) continue;
+      const std::uint32_t b = neighbour_region(e);
+      if (b != kNoRegion && b != a) adj[fill[a]++] = b;
+    }
+  }
+  // Depth 0 behind an unconstrained hull edge, else 1 behind a constrained
+  // one; every later step costs one, so a FIFO queue holding the depth-0
+  // regions before the depth-1 ones finds the fewest crossings.
+  std::vector<std::uint32_t> queue;
+  queue.reserve(regions.count);
+  for (int pass = 0; pass < 2; ++pass) {
+    for (TriId g = 0; g < slots; ++g) {
+      if (mesh.is_dead(g) || !mesh.is_ghost(g)) continue;
+      const HalfEdgeId h = hull_half_edge(mesh, g);
+      if (h == kNone || mesh.is_constrained(h) != (pass == 1)) continue;
+      const std::uint32_t r = regions.label[tri_of(h)];
+      if (depth[r] != kUnset) continue;
+      depth[r] = static_cast<std::uint32_t>(pass);
+      queue.push_back(r);
+    }
+  }
+  for (std::size_t head = 0; head < queue.size(); ++head) {
+    const std::uint32_t r = queue[head];
+    for (std::uint32_t k = degree[r]; k < degree[r + 1]; ++k) {
+      const std::uint32_t s = adj[k];
+      if (depth[s] != kUnset) continue;
+      depth[s] = depth[r] + 1;
+      queue.push_back(s);
+    }
+  }
+  // Regions no path reaches (impossible in a connected triangulation) count
+  // as outside.
+  for (std::uint32_t& d : depth)
+    if (d == kUnset) d = 0;
+  return depth;
+}
+
+}  // namespace
+
+void carve_domain(Mesh& mesh, const Pslg& pslg, const DomainOptions& options, DomainStats* stats) {
+  const auto t0 = std::chrono::steady_clock::now();
+  DomainStats local;
+  DomainStats& st = stats ? *stats : local;
+  st = DomainStats{};
+
+  const std::size_t slots = mesh.num_triangle_slots();
+  const Regions regions = label_regions(mesh);
+
+  // -c: the hull edges become segments (before anything is removed, while
+  // the ghost triangles still name them).
+  if (options.keep_convex_hull) {
+    for (TriId g = 0; g < slots; ++g) {
+      if (mesh.is_dead(g) || !mesh.is_ghost(g)) continue;
+      const HalfEdgeId h = hull_half_edge(mesh, g);
+      if (h == kNone || mesh.is_constrained(h)) continue;
+      mesh.constrain_edge(h, 0);
+      ++st.hull_segments_added;
+    }
+  }
+
+  // Every point is located before the mesh changes.
+  std::vector<char> removed(regions.count, 0);
+  TriId hint = kNone;
+  if (!options.ignore_holes) {
+    for (const Point& h : pslg.holes) {
+      const std::uint32_t r = regions.count ? region_of_point(mesh, regions, h, hint) : kNoRegion;
+      if (r == kNoRegion) {
+        ++st.holes_ignored;
+        continue;
+      }
+      ++st.holes_used;
+      removed[r] = 1;
+    }
+  }
+  std::vector<std::uint32_t> seed_of(regions.count, kNone);  // region -> last seed in it
+  const bool use_seeds = options.regional_attributes || options.regional_area_bounds;
+  std::vector<std::uint32_t> seed_region;
+  if (use_seeds) {
+    seed_region.reserve(pslg.regions.size());
+    for (const RegionSeed& s : pslg.regions)
+      seed_region.push_back(regions.count ? region_of_point(mesh, regions, s.p, hint) : kNoRegion);
+  }
+
+  if (options.fill == FillRule::Holes) {
+    if (!options.keep_convex_hull) {
+      for (TriId g = 0; g < slots; ++g) {
+        if (mesh.is_dead(g) || !mesh.is_ghost(g)) continue;
+        const HalfEdgeId h = hull_half_edge(mesh, g);
+        if (h != kNone && !mesh.is_constrained(h)) removed[regions.label[tri_of(h)]] = 1;
+      }
+    }
+  } else {
+    const std::vector<std::uint32_t> depth = region_depths(mesh, regions);
+    for (std::uint32_t r = 0; r < regions.count; ++r) {
+      const bool keep = depth[r] % 2 == 1 || (options.keep_convex_hull && depth[r] == 0);
+      if (!keep) removed[r] = 1;
+    }
+  }
+
+  if (use_seeds) {
+    for (std::size_t i = 0; i < seed_region.size(); ++i) {
+      const std::uint32_t r = seed_region[i];
+      if (r == kNoRegion || removed[r]) {
+        ++st.regions_ignored;
+        continue;
+      }
+      ++st.regions_used;
+      seed_of[r] = static_cast<std::uint32_t>(i);
+    }
+  }
+
+  // Regional attributes are appended after any attributes the triangles
+  // already carry.
+  std::size_t attr_index = 0, na = 0;
+  if (options.regional_attributes) {
+    const std::size_t old_na = mesh.num_triangle_attributes();
+    na = old_na + 1;
+    attr_index = old_na;
+    std::vector<double>& attrs = mesh.triangle_attributes();
+    std::vector<double> wider(slots * na, 0.0);
+    for (std::size_t t = 0; t < slots; ++t)
+      for (std::size_t k = 0; k < old_na && t * old_na + k < attrs.size(); ++k) wider[t * na + k] = attrs[t * old_na + k];
+    attrs = std::move(wider);
+    mesh.set_num_triangle_attributes(na);
+  }
+
+  for (TriId t = 0; t < slots; ++t) {
+    const std::uint32_t r = regions.label[t];
+    if (r == kNoRegion) continue;
+    if (removed[r]) {
+      mesh.remove_triangle(t);
+      ++st.triangles_removed;
+      continue;
+    }
+    const std::uint32_t seed = seed_of[r];
+    if (seed == kNone) continue;
+    const RegionSeed& s = pslg.regions[seed];
+    if (options.regional_attributes) mesh.triangle_attributes()[std::size_t{t} * na + attr_index] = s.attribute;
+    if (options.regional_area_bounds && s.max_area > 0) mesh.set_triangle_area_bound(t, s.max_area);
+  }
+  mesh.compact();
+  st.triangles_kept = mesh.num_triangles();
+  st.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+std::vector<std::string> check_domain_boundary(const Mesh& mesh, std::size_t max_problems) {
+  std::vector<std::string> problems;
+  const std::size_t slots = mesh.num_triangle_slots();
+  for (TriId t = 0; t < slots && problems.size() < max_problems; ++t) {
+    if (!mesh.is_real(t)) continue;
+    for (HalfEdgeId e = 3 * t; e < 3 * t + 3 && problems.size() < max_problems; ++e) {
+      const HalfEdgeId f = mesh.twin(e);
+      if (f != kNone && mesh.is_real(tri_of(f))) continue;
+      if (!mesh.is_constrained(e))
+        problems.push_back("boundary edge " + std::to_string(mesh.origin(e)) + "-" + std::to_string(mesh.dest(e)) +
+                           " of triangle " + std::to_string(t) + " is not a segment");
+    }
+  }
+  return problems;
+}
+
+}  // namespace deltamesh

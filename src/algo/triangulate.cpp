@@ -1,0 +1,331 @@
+// The one-call pipeline (see triangulate.hpp) and the -r mesh rebuild.
+#include "deltamesh/triangulate.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <string>
+#include <utility>
+
+#include "deltamesh/errors.hpp"
+#include "deltamesh/predicates.hpp"
+
+namespace deltamesh {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+std::string count_of(std::size_t n, const char* one, const char* many) {
+  return std::to_string(n) + " " + (n == 1 ? one : many);
+}
+
+// Walks from Steiner vertex `from` along half-edge e (constrained, from ->
+// w) straight on through further added vertices until an input vertex
+// (id < n) is reached. Returns it, or kNone when the chain bends or ends.
+VertexId walk_to_input_vertex(const Mesh& mesh, HalfEdgeId e, std::size_t n) {
+  VertexId prev = mesh.origin(e);
+  VertexId cur = mesh.dest(e);
+  for (std::size_t guard = 0; guard < mesh.num_vertices() && cur != kInfinite && cur >= n; ++guard) {
+    VertexId next = kNone;
+    mesh.for_each_out_edge(cur, [&](HalfEdgeId g) {
+      const VertexId w = mesh.dest(g);
+      if (w == kInfinite || w == prev || !mesh.is_constrained(g)) return true;
+      const Point& a = mesh.point(prev);
+      const Point& b = mesh.point(cur);
+      const Point& c = mesh.point(w);
+      if (orient2d(a, b, c) != 0) return true;
+      if ((b.x - a.x) * (c.x - b.x) + (b.y - a.y) * (c.y - b.y) <= 0) return true;
+      next = w;
+      return false;
+    });
+    if (next == kNone) return kNone;
+    prev = cur;
+    cur = next;
+  }
+  return cur == kInfinite || cur >= n ? kNone : cur;
+}
+
+// Attributes of an added vertex v: linear interpolation between the input
+// endpoints of a straight chain of constrained edges through v.
+void interpolate_attributes(Mesh& mesh, VertexId v, std::size_t n) {
+  const std::size_t na = mesh.num_vertex_attributes();
+  std::vector<double>& attrs = mesh.vertex_attributes();
+  std::vector<HalfEdgeId> constrained;
+  mesh.for_each_out_edge(v, [&](HalfEdgeId g) {
+    if (mesh.dest(g) != kInfinite && mesh.is_constrained(g)) constrained.push_back(g);
+    return true;
+  });
+  const Point& p = mesh.point(v);
+  for (std::size_t i = 0; i < constrained.size(); ++i) {
+    for (std::size_t j = i + 1; j < constrained.size(); ++j) {
+      const Point& a = mesh.point(mesh.dest(constrained[i]));
+      const Point& b = mesh.point(mesh.dest(constrained[j]));
+      // Opposite directions through v: one straight chain.
+      if (orient2d(a, p, b) != 0 || (a.x - p.x) * (b.x - p.x) + (a.y - p.y) * (b.y - p.y) >= 0) continue;
+      const VertexId va = walk_to_input_vertex(mesh, constrained[i], n);
+      const VertexId vb = walk_to_input_vertex(mesh, constrained[j], n);
+      if (va == kNone || vb == kNone) continue;
+      const double da = std::hypot(p.x - mesh.point(va).x, p.y - mesh.point(va).y);
+      const double db = std::hypot(p.x - mesh.point(vb).x, p.y - mesh.point(vb).y);
+      const double t = da + db > 0 ? da / (da + db) : 0.5;
+      for (std::size_t k = 0; k < na; ++k)
+        attrs[v * na + k] = (1 - t) * attrs[std::size_t{va} * na + k] + t * attrs[std::size_t{vb} * na + k];
+      return;
+    }
+  }
+}
+
+// Input markers and attributes onto the mesh's vertices, then the segment
+// part of Triangle's marker rule. Runs on the mesh before carving, while every
+// segment is still present.
+void carry_vertex_data(Mesh& mesh, const Pslg& pslg, bool use_segments) {
+  const std::size_t n = pslg.points.size();
+  const std::size_t nv = mesh.num_vertices();
+  std::vector<int>& markers = mesh.vertex_markers();
+  markers.assign(nv, 0);
+  for (std::size_t v = 0; v < n && v < pslg.point_markers.size(); ++v) markers[v] = pslg.point_markers[v];
+
+  const std::size_t na = pslg.num_point_attributes;
+  mesh.set_num_vertex_attributes(na);
+  std::vector<double>& attrs = mesh.vertex_attributes();
+  attrs.assign(nv * na, 0.0);
+  std::copy_n(pslg.point_attributes.begin(), std::min(pslg.point_attributes.size(), n * na), attrs.begin());
+  if (na > 0)
+    for (std::size_t v = n; v < nv; ++v) interpolate_attributes(mesh, static_cast<VertexId>(v), n);
+
+  if (!use_segments) return;
+  // A vertex on a segment with a nonzero marker takes that marker: segment
+  // endpoints first, in input order, then vertices inside segments.
+  for (const Segment& s : pslg.segments) {
+    if (s.marker == 0) continue;
+    if (s.a < nv && markers[s.a] == 0) markers[s.a] = s.marker;
+    if (s.b < nv && markers[s.b] == 0) markers[s.b] = s.marker;
+  }
+  if (!mesh.has_edge_markers()) return;
+  const std::size_t slots = mesh.num_triangle_slots();
+  for (TriId t = 0; t < slots; ++t) {
+    if (mesh.is_dead(t)) continue;
+    for (HalfEdgeId e = 3 * t; e < 3 * t + 3; ++e) {
+      const int m = mesh.edge_marker(e);
+      const VertexId o = mesh.origin(e);
+      if (m != 0 && o != kInfinite && mesh.is_constrained(e) && markers[o] == 0) markers[o] = m;
+    }
+  }
+}
+
+// The last part of the marker rule, on the finished (compacted) mesh: a
+// vertex still marked 0 that lies on the boundary gets 1. Vertices added
+// after carry_vertex_data (refinement) start at 0.
+void mark_boundary_vertices(Mesh& mesh) {
+  std::vector<int>& markers = mesh.vertex_markers();
+  markers.resize(mesh.num_vertices(), 0);
+  const std::size_t na = mesh.num_vertex_attributes();
+  mesh.vertex_attributes().resize(mesh.num_vertices() * na, 0.0);
+  const std::size_t slots = mesh.num_triangle_slots();
+  for (TriId t = 0; t < slots; ++t) {
+    if (!mesh.is_real(t)) continue;
+    for (HalfEdgeId e = 3 * t; e < 3 * t + 3; ++e) {
+      const HalfEdgeId f = mesh.twin(e);
+      if (f != kNone && mesh.is_real(tri_of(f))) continue;
+      if (markers[mesh.origin(e)] == 0) markers[mesh.origin(e)] = 1;
+      if (markers[mesh.dest(e)] == 0) markers[mesh.dest(e)] = 1;
+    }
+  }
+}
+
+std::size_t count_constrained_edges(const Mesh& mesh) {
+  std::size_t count = 0;
+  if (!mesh.has_edge_flags()) return 0;
+  const std::size_t slots = mesh.num_triangle_slots();
+  for (TriId t = 0; t < slots; ++t) {
+    if (!mesh.is_real(t)) continue;
+    for (HalfEdgeId e = 3 * t; e < 3 * t + 3; ++e) {
+      if (!mesh.is_constrained(e)) continue;
+      const HalfEdgeId f = mesh.twin(e);
+      if (f == kNone || !mesh.is_real(tri_of(f)) || e < f) ++count;
+    }
+  }
+  return count;
+}
+
+}  // namespace
+
+Mesh triangulate(const Pslg& pslg, const TriangulateOptions& options, TriangulateStats* stats) {
+  const auto t_start = Clock::now();
+  TriangulateStats local;
+  TriangulateStats& st = stats ? *stats : local;
+  st = TriangulateStats{};
+  st.input_vertices = pslg.points.size();
+  st.input_segments = options.use_segments ? pslg.segments.size() : 0;
+  st.input_holes = options.use_segments ? pslg.holes.size() : 0;
+  st.input_regions = options.use_segments ? pslg.regions.size() : 0;
+
+  Mesh mesh;
+  auto t = Clock::now();
+  if (!options.use_segments) {
+    DelaunayOptions dopt;
+    dopt.keep_ghosts = options.domain.keep_convex_hull;  // the hull edges are constrained below
+    DelaunayStats ds;
+    mesh = delaunay(pslg.points, dopt, &ds);
+    st.duplicate_vertices = ds.duplicates;
+    st.triangulate_seconds = seconds_since(t);
+    carry_vertex_data(mesh, pslg, false);
+    if (options.domain.keep_convex_hull) {
+      t = Clock::now();
+      DomainOptions hull;
+      hull.keep_convex_hull = true;
+      carve_domain(mesh, Pslg{}, hull, &st.domain);
+      st.domain_seconds = seconds_since(t);
+    }
+  } else {
+    CdtOptions copt;
+    copt.method = options.method;
+    copt.strict = options.strict;
+    mesh = constrained_triangulation(pslg, copt, &st.cdt);
+    st.triangulate_seconds = seconds_since(t);
+    st.duplicate_vertices = st.cdt.duplicate_vertices;
+    st.steiner_vertices = mesh.num_vertices() - std::min(mesh.num_vertices(), pslg.points.size());
+    if (options.check_segments) {
+      t = Clock::now();
+      CheckOptions co;
+      co.delaunay = options.method != CdtMethod::Ct;
+      co.pslg = &pslg;
+      st.segment_check = check(mesh, co);
+      st.check_seconds = seconds_since(t);
+    }
+    carry_vertex_data(mesh, pslg, true);
+
+    t = Clock::now();
+    carve_domain(mesh, pslg, options.domain, &st.domain);
+    st.domain_seconds = seconds_since(t);
+
+    if (st.cdt.zero_length_segments)
+      st.warnings.push_back(count_of(st.cdt.zero_length_segments, "zero-length segment", "zero-length segments") +
+                            " ignored (both ends at the same point)");
+    if (st.domain.holes_ignored)
+      st.warnings.push_back(count_of(st.domain.holes_ignored, "hole point", "hole points") +
+                            " ignored (outside the convex hull, on a vertex or on a segment)");
+    if (st.domain.regions_ignored)
+      st.warnings.push_back(count_of(st.domain.regions_ignored, "region point", "region points") +
+                            " ignored (outside the domain, on a vertex or on a segment)");
+    if (mesh.num_triangles() == 0)
+      st.warnings.push_back(
+          "every triangle was removed: the domain is empty (a hole point or the exterior reaches everything; "
+          "are the segments closed around the region, or is -c needed?)");
+  }
+
+  // Refinement (a later issue) goes here: it works on the carved mesh, and
+  // vertices it adds get their markers from mark_boundary_vertices below.
+
+  t = Clock::now();
+  if (!mesh.compacted()) mesh.compact();
+  mark_boundary_vertices(mesh);
+  st.finish_seconds = seconds_since(t);
+  st.vertices = mesh.num_vertices();
+  st.triangles = mesh.num_triangles();
+  st.segments = count_constrained_edges(mesh);
+  st.total_seconds = seconds_since(t_start);
+  return mesh;
+}
+
+Mesh mesh_from_triangles(const Pslg& nodes, std::span<const VertexId> triangles, std::size_t num_attributes,
+                         std::span<const double> attributes) {
+  const std::size_t n = nodes.points.size();
+  const std::size_t nt = triangles.size() / 3;
+  if (triangles.size() % 3 != 0) throw InputError("the triangle list length is not a multiple of 3");
+  Mesh mesh;
+  mesh.reserve(n, nt);
+  for (const Point& p : nodes.points) mesh.add_vertex(p);
+  mesh.set_num_triangle_attributes(num_attributes);
+  for (std::size_t i = 0; i < nt; ++i) {
+    VertexId v[3] = {triangles[3 * i], triangles[3 * i + 1], triangles[3 * i + 2]};
+    for (VertexId x : v)
+      if (x >= n)
+        throw InputError("triangle " + std::to_string(i) + " refers to vertex " + std::to_string(x) + " of " +
+                         std::to_string(n),
+                         i);
+    const double o = orient2d(nodes.points[v[0]], nodes.points[v[1]], nodes.points[v[2]]);
+    if (o == 0) throw InputError("triangle " + std::to_string(i) + " is degenerate (its vertices are collinear)", i);
+    if (o < 0) std::swap(v[1], v[2]);
+    const TriId t = mesh.add_triangle(v[0], v[1], v[2]);
+    for (std::size_t k = 0; k < num_attributes; ++k) {
+      const std::size_t src = i * num_attributes + k;
+      mesh.triangle_attributes()[std::size_t{t} * num_attributes + k] = src < attributes.size() ? attributes[src] : 0.0;
+    }
+  }
+  // Twins: sort half-edges by their undirected edge.
+  struct Key {
+    std::uint64_t edge;
+    HalfEdgeId half;
+  };
+  std::vector<Key> keys;
+  keys.reserve(3 * nt);
+  for (HalfEdgeId e = 0; e < 3 * nt; ++e) {
+    const VertexId a = mesh.origin(e), b = mesh.dest(e);
+    keys.push_back({(std::uint64_t{std::min(a, b)} << 32) | std::max(a, b), e});
+  }
+  std::sort(keys.begin(), keys.end(), [](const Key& x, const Key& y) {
+    return x.edge != y.edge ? x.edge < y.edge : x.half < y.half;
+  });
+  for (std::size_t i = 0; i < keys.size();) {
+    std::size_t j = i + 1;
+    while (j < keys.size() && keys[j].edge == keys[i].edge) ++j;
+    const VertexId a = static_cast<VertexId>(keys[i].edge >> 32), b = static_cast<VertexId>(keys[i].edge);
+    const std::string name = "edge " + std::to_string(a) + "-" + std::to_string(b);
+    if (j - i > 2) throw InputError(name + " is shared by " + std::to_string(j - i) + " triangles");
+    if (j - i == 2) {
+      const HalfEdgeId e = keys[i].half, f = keys[i + 1].half;
+      if (mesh.origin(e) == mesh.origin(f))
+        throw InputError("triangles " + std::to_string(tri_of(e)) + " and " + std::to_string(tri_of(f)) +
+                         " overlap (both on the same side of " + name + ")");
+      mesh.link(e, f);
+    }
+    i = j;
+  }
+  mesh.compact();
+
+  // Segments: each one an edge or a straight chain of edges.
+  for (std::size_t si = 0; si < nodes.segments.size(); ++si) {
+    const Segment& s = nodes.segments[si];
+    if (s.a >= n || s.b >= n) throw InputError("segment " + std::to_string(si) + " refers to a missing vertex", si);
+    const Point& pa = mesh.point(s.a);
+    const Point& pb = mesh.point(s.b);
+    const bool use_x = std::abs(pb.x - pa.x) >= std::abs(pb.y - pa.y);
+    auto along = [&](const Point& p) { return use_x ? (pb.x >= pa.x ? p.x : -p.x) : (pb.y >= pa.y ? p.y : -p.y); };
+    VertexId cur = s.a;
+    std::size_t guard = 0;
+    while (cur != s.b && guard++ <= n) {
+      // Neighbours of cur: the dest and the third vertex of each triangle around it.
+      HalfEdgeId step = kNone;
+      VertexId next = kNone;
+      mesh.for_each_out_edge(cur, [&](HalfEdgeId g) {
+        const HalfEdgeId candidates[2] = {g, prev_edge(g)};  // cur->w, and w->cur
+        for (HalfEdgeId c : candidates) {
+          const VertexId w = c == g ? mesh.dest(c) : mesh.origin(c);
+          const Point& pw = mesh.point(w);
+          if (w == s.b || (orient2d(pa, pb, pw) == 0 && along(pw) > along(mesh.point(cur)) && along(pw) < along(pb))) {
+            if (next == kNone || along(pw) < along(mesh.point(next))) {
+              next = w;
+              step = c;
+            }
+          }
+        }
+        return true;
+      });
+      if (step == kNone)
+        throw InputError("segment " + std::to_string(si) + " (vertices " + std::to_string(s.a) + "-" +
+                             std::to_string(s.b) + ") is not made of edges of the mesh",
+                         si);
+      mesh.constrain_edge(step, s.marker);
+      cur = next;
+    }
+  }
+  carry_vertex_data(mesh, nodes, true);
+  mark_boundary_vertices(mesh);
+  return mesh;
+}
+
+}  // namespace deltamesh

@@ -1,0 +1,410 @@
+// The deltamesh command line, run as a process on inputs in a temporary
+// directory: output names, numbering, output switches, exit codes and
+// messages, and that a failed run leaves no partial output.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "deltamesh/triangle_io.hpp"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct Result {
+  int code = -1;
+  std::string out;
+  std::string err;
+};
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+// Data lines of a Triangle file (comments and blank lines dropped), split
+// into tokens.
+std::vector<std::vector<std::string>> table(const fs::path& p) {
+  std::vector<std::vector<std::string>> rows;
+  std::istringstream in(slurp(p));
+  std::string line;
+  while (std::getline(in, line)) {
+    line = line.substr(0, line.find('#'));
+    std::istringstream ls(line);
+    std::vector<std::string> row;
+    for (std::string tok; ls >> tok;) row.push_back(tok);
+    if (!row.empty()) rows.push_back(row);
+  }
+  return rows;
+}
+
+class Cli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    dir_ = fs::temp_directory_path() / ("deltamesh_cli_" + std::to_string(::getpid()) + "_" + info->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override {
+    if (!HasFailure()) fs::remove_all(dir_);
+  }
+
+  // Copies tests/data/cli/NAME into the temporary directory.
+  void data(const std::string& name, const std::string& as = {}) const {
+    fs::copy_file(fs::path(DELTAMESH_SOURCE_DIR) / "tests/data/cli" / name, dir_ / (as.empty() ? name : as),
+                  fs::copy_options::overwrite_existing);
+  }
+  void write(const std::string& name, const std::string& text) const {
+    std::ofstream(dir_ / name, std::ios::binary) << text;
+  }
+  bool exists(const std::string& name) const { return fs::exists(dir_ / name); }
+  fs::path path(const std::string& name) const { return dir_ / name; }
+
+  // Runs the CLI in the temporary directory with the given arguments.
+  Result run(const std::string& args) const {
+    const fs::path out = dir_ / ".stdout", err = dir_ / ".stderr";
+    const std::string cmd = "cd '" + dir_.string() + "' && '" + std::string(DELTAMESH_CLI) + "' " + args + " > '" +
+                            out.string() + "' 2> '" + err.string() + "'";
+    const int status = std::system(cmd.c_str());
+    Result r;
+    r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    r.out = slurp(out);
+    r.err = slurp(err);
+    fs::remove(out);
+    fs::remove(err);
+    return r;
+  }
+
+  // Names in the directory, sorted.
+  std::vector<std::string> listing() const {
+    std::vector<std::string> names;
+    for (const auto& e : fs::directory_iterator(dir_)) names.push_back(e.path().filename().string());
+    std::sort(names.begin(), names.end());
+    return names;
+  }
+
+  fs::path dir_;
+};
+
+#define EXPECT_CONTAINS(haystack, needle) \
+  EXPECT_NE((haystack).find(needle), std::string::npos) << "expected '" << (needle) << "' in:\n" << (haystack)
+
+// ---------------------------------------------------------------------------
+// Output names and numbering
+
+TEST_F(Cli, NodeInputWritesIterationOne) {
+  data("points.node");
+  const Result r = run("points.node");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(listing(), (std::vector<std::string>{"points.1.ele", "points.1.node", "points.node"}));
+  // One-based like the input; attributes and the input's marker 7 carried.
+  const auto node = table(path("points.1.node"));
+  EXPECT_EQ(node[0], (std::vector<std::string>{"6", "2", "1", "1"}));
+  EXPECT_EQ(node[1][0], "1");
+  EXPECT_EQ(node[4], (std::vector<std::string>{"4", "0", "3", "3.5", "7"}));
+  EXPECT_EQ(node[5].back(), "0");  // interior vertex
+  EXPECT_EQ(node[1].back(), "1");  // hull vertex
+  const auto ele = table(path("points.1.ele"));
+  EXPECT_EQ(ele[0][0], "6");  // 2n - 2 - h = 12 - 2 - 4
+  EXPECT_EQ(ele[1][0], "1");
+  EXPECT_CONTAINS(r.out, "Delaunay triangulation");
+}
+
+TEST_F(Cli, BaseNameWithoutExtensionAndIterationCounting) {
+  data("points.node", "p.1.node");
+  Result r = run("p.1");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_TRUE(exists("p.2.node"));
+  EXPECT_TRUE(exists("p.2.ele"));
+  r = run("p.2.node");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_TRUE(exists("p.3.ele"));
+}
+
+TEST_F(Cli, ZeroBasedNumbering) {
+  data("points.node");
+  const Result r = run("-z points.node");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto node = table(path("points.1.node"));
+  EXPECT_EQ(node[1][0], "0");
+  const auto ele = table(path("points.1.ele"));
+  EXPECT_EQ(ele[1][0], "0");
+  for (std::size_t i = 1; i < ele.size(); ++i)
+    for (std::size_t k = 1; k <= 3; ++k) EXPECT_LT(std::stoi(ele[i][k]), 6);
+}
+
+TEST_F(Cli, OutputSelectionSwitches) {
+  data("points.node");
+  Result r = run("-enNE points.node");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(listing(), (std::vector<std::string>{"points.1.edge", "points.1.neigh", "points.node"}));
+  const auto neigh = table(path("points.1.neigh"));
+  EXPECT_EQ(neigh[0], (std::vector<std::string>{"6", "3"}));
+  r = run("-IN points.node");  // no iteration number; -N keeps the input intact
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_TRUE(exists("points.ele"));
+  EXPECT_EQ(table(path("points.node"))[0], (std::vector<std::string>{"6", "2", "1", "1"}));
+}
+
+TEST_F(Cli, NoMarkers) {
+  data("points.node");
+  const Result r = run("-Be points.node");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(table(path("points.1.node"))[0], (std::vector<std::string>{"6", "2", "1", "0"}));
+  EXPECT_EQ(table(path("points.1.edge"))[0][1], "0");
+}
+
+TEST_F(Cli, ConvexHullOnPointSetWritesPoly) {
+  data("points.node");
+  const Result r = run("-c points.node");
+  ASSERT_EQ(r.code, 0) << r.err;
+  ASSERT_TRUE(exists("points.1.poly"));
+  const auto poly = table(path("points.1.poly"));
+  EXPECT_EQ(poly[1][0], "4");  // four hull segments
+}
+
+// ---------------------------------------------------------------------------
+// -p and the domain switches
+
+TEST_F(Cli, PolyWritesNodeElePoly) {
+  data("square_hole.poly");
+  const Result r = run("-p square_hole.poly");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_TRUE(exists("square_hole.1.node"));
+  EXPECT_TRUE(exists("square_hole.1.ele"));
+  ASSERT_TRUE(exists("square_hole.1.poly"));
+  const auto ele = table(path("square_hole.1.ele"));
+  EXPECT_EQ(ele[0][2], "0");  // no attributes without -A
+  // The ring [0,4]^2 minus [1,3]^2 with all 12 vertices in use on its two
+  // boundaries (the cut ends split the hole's sides): T = V + 2h - 2 = 12.
+  EXPECT_EQ(ele[0][0], "12");
+  const auto poly = table(path("square_hole.1.poly"));
+  EXPECT_EQ(poly[0][0], "0");  // vertices are in the .node file
+  // 6 outer + 6 hole pieces + 2 cuts.
+  EXPECT_EQ(poly[1][0], "14");
+  // Segment markers carried: outer 3, hole 2, cuts 0.
+  int threes = 0, twos = 0, zeros = 0;
+  for (std::size_t i = 2; i < 2 + 14; ++i) {
+    threes += poly[i][3] == "3";
+    twos += poly[i][3] == "2";
+    zeros += poly[i][3] == "0";
+  }
+  EXPECT_EQ(threes, 6);
+  EXPECT_EQ(twos, 6);
+  EXPECT_EQ(zeros, 2);
+  // The unused vertex in the hole stays in the .node file (as in Triangle).
+  EXPECT_EQ(table(path("square_hole.1.node"))[0][0], "13");
+}
+
+TEST_F(Cli, NoPolyJettisonAndRegionalAttributes) {
+  data("square_hole.poly");
+  const Result r = run("-pPjA square_hole");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_FALSE(exists("square_hole.1.poly"));
+  EXPECT_EQ(table(path("square_hole.1.node"))[0][0], "12");  // vertex 9 in the hole dropped
+  const auto ele = table(path("square_hole.1.ele"));
+  ASSERT_EQ(ele[0][2], "1");
+  int ones = 0, twos = 0;
+  for (std::size_t i = 1; i < ele.size(); ++i) {
+    ones += ele[i][4] == "1";
+    twos += ele[i][4] == "2";
+  }
+  EXPECT_EQ(ones + twos, 12);
+  EXPECT_GT(ones, 0);
+  EXPECT_GT(twos, 0);
+}
+
+TEST_F(Cli, IgnoreHolesAndEvenOdd) {
+  data("square_hole.poly");
+  Result r = run("-pO square_hole");
+  ASSERT_EQ(r.code, 0) << r.err;
+  // The hole is meshed too: 13 vertices, 6 on the boundary: 2*13 - 2 - 6.
+  EXPECT_EQ(table(path("square_hole.1.ele"))[0][0], "18");
+  r = run("-pO --fill=evenodd square_hole");  // even-odd needs no hole point
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(table(path("square_hole.1.ele"))[0][0], "12");
+}
+
+TEST_F(Cli, EmptyDomainIsSuccess) {
+  data("open.poly");
+  Result r = run("-p open");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_CONTAINS(r.err, "empty");
+  EXPECT_EQ(table(path("open.1.ele"))[0][0], "0");
+  r = run("-pc open");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(table(path("open.1.ele"))[0][0], "4");
+}
+
+TEST_F(Cli, CrossingSegmentsAndStrict) {
+  data("crossing.poly");
+  Result r = run("-pV crossing.poly");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_CONTAINS(r.out, "intersections resolved:    1");
+  EXPECT_EQ(table(path("crossing.1.node"))[0][0], "5");
+  EXPECT_EQ(table(path("crossing.1.ele"))[0][0], "4");
+  fs::remove(path("crossing.1.node"));
+  fs::remove(path("crossing.1.ele"));
+  fs::remove(path("crossing.1.poly"));
+  r = run("-p --strict crossing.poly");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_CONTAINS(r.err, "segments 5 and 6 cross");  // 1-based like the file
+  EXPECT_FALSE(exists("crossing.1.node"));
+}
+
+TEST_F(Cli, CdtMethods) {
+  data("square_hole.poly");
+  for (const char* m : {"fast", "ct", "lawson", "lifting"}) {
+    const Result r = run(std::string("-pQ --cdt=") + m + " square_hole");
+    ASSERT_EQ(r.code, 0) << m << ": " << r.err;
+    EXPECT_TRUE(r.out.empty()) << r.out;  // -Q
+    EXPECT_EQ(table(path("square_hole.1.ele"))[0][0], "12") << m;
+  }
+  const Result bad = run("-p --cdt=magic square_hole");
+  EXPECT_EQ(bad.code, 1);
+  EXPECT_CONTAINS(bad.err, "--cdt=magic");
+}
+
+TEST_F(Cli, VerboseReportsPhasesAndCounts) {
+  data("square_hole.poly");
+  const Result r = run("-pV square_hole");
+  ASSERT_EQ(r.code, 0) << r.err;
+  for (const char* s : {"input vertices:", "input segments:", "intersections resolved:", "vertices on segments:",
+                        "duplicate vertices merged:", "holes:", "triangles:", "Timings:", "constrained triangulation",
+                        "domain", "write"})
+    EXPECT_CONTAINS(r.out, s);
+  EXPECT_CONTAINS(r.out, "vertices on segments:      2");
+}
+
+TEST_F(Cli, CheckSwitch) {
+  data("square_hole.poly");
+  data("points.node");
+  Result r = run("-pC square_hole");
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_CONTAINS(r.out, "Check: mesh is valid");
+  r = run("-C points");
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_CONTAINS(r.out, "mesh is valid");
+}
+
+TEST_F(Cli, RefineReadsMeshAndWritesNextIteration) {
+  data("square_hole.poly");
+  Result r = run("-pA square_hole");
+  ASSERT_EQ(r.code, 0) << r.err;
+  r = run("-rpCe square_hole.1");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_TRUE(exists("square_hole.2.node"));
+  EXPECT_TRUE(exists("square_hole.2.edge"));
+  ASSERT_TRUE(exists("square_hole.2.poly"));
+  EXPECT_EQ(table(path("square_hole.2.ele")), table(path("square_hole.1.ele")));  // attributes kept
+  EXPECT_EQ(table(path("square_hole.2.poly"))[1][0], "14");
+  EXPECT_EQ(table(path("square_hole.2.node")), table(path("square_hole.1.node")));
+  // -r without FILE.ele: a clear error.
+  fs::remove(path("square_hole.2.ele"));
+  r = run("-r square_hole.2");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_CONTAINS(r.err, "square_hole.2.ele");
+}
+
+// ---------------------------------------------------------------------------
+// Switch parsing
+
+TEST_F(Cli, NumbersAttachedToSwitchesParse) {
+  data("square_hole.poly");
+  // q and a take numbers; z and Q after them are switches again. Refinement
+  // is not built yet: the run names both switches with their numbers.
+  const Result r = run("-pq30.5a0.01zQ square_hole");
+  EXPECT_EQ(r.code, 1);
+  EXPECT_CONTAINS(r.err, "-q30.5 (quality");
+  EXPECT_CONTAINS(r.err, "-a0.01 (maximum triangle area");
+  EXPECT_CONTAINS(r.err, "not available");
+  EXPECT_FALSE(exists("square_hole.1.node"));
+  const Result s = run("-pS100o2Y square_hole");
+  EXPECT_EQ(s.code, 1);
+  EXPECT_CONTAINS(s.err, "-S100");
+  EXPECT_CONTAINS(s.err, "-o2");
+  EXPECT_CONTAINS(s.err, "-Y");
+}
+
+TEST_F(Cli, UsageErrors) {
+  data("points.node");
+  Result r = run("-K points.node");
+  EXPECT_EQ(r.code, 1);
+  EXPECT_CONTAINS(r.err, "unknown switch -K");
+  r = run("-p3 points.node");
+  EXPECT_EQ(r.code, 1);
+  EXPECT_CONTAINS(r.err, "number '3'");
+  r = run("-o3 points.node");
+  EXPECT_EQ(r.code, 1);
+  EXPECT_CONTAINS(r.err, "-o must be followed by 2");
+  r = run("--fill=zigzag points.node");
+  EXPECT_EQ(r.code, 1);
+  r = run("points.node other.node");
+  EXPECT_EQ(r.code, 1);
+  r = run("");
+  EXPECT_EQ(r.code, 1);
+  EXPECT_CONTAINS(r.err, "no input file");
+  r = run("--help");
+  EXPECT_EQ(r.code, 0);
+  EXPECT_CONTAINS(r.out, "Exit codes");
+  EXPECT_EQ(listing(), (std::vector<std::string>{"points.node"}));
+}
+
+// ---------------------------------------------------------------------------
+// Input errors and partial output
+
+TEST_F(Cli, MissingInput) {
+  Result r = run("nothing.node");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_CONTAINS(r.err, "cannot open input file 'nothing.node'");
+  r = run("-p nothing");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_CONTAINS(r.err, "nothing.poly");
+  EXPECT_TRUE(listing().empty());
+}
+
+TEST_F(Cli, MalformedInputNamesFileAndLine) {
+  data("bad.node");
+  const Result r = run("bad.node");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_CONTAINS(r.err, "bad.node:4:");
+  EXPECT_CONTAINS(r.err, "coordinate");
+  EXPECT_EQ(listing(), (std::vector<std::string>{"bad.node"}));  // nothing written
+}
+
+TEST_F(Cli, CollinearInputIsAnInputError) {
+  write("line.node", "3 2 0 0\n1 0 0\n2 1 1\n3 2 2\n");
+  const Result r = run("line.node");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_CONTAINS(r.err, "collinear");
+  EXPECT_EQ(listing(), (std::vector<std::string>{"line.node"}));
+}
+
+TEST_F(Cli, UnwritableOutputLeavesNoPartialFile) {
+  data("points.node");
+  fs::create_directory(path("points.1.ele"));  // the .ele cannot be written
+  const Result r = run("points.node");
+  EXPECT_EQ(r.code, 4) << r.err;
+  EXPECT_CONTAINS(r.err, "points.1.ele");
+  // The .node written before is complete; no temporary file is left behind.
+  for (const std::string& name : listing()) {
+    EXPECT_EQ(name.find(".tmp"), std::string::npos) << name;
+    EXPECT_NE(name.front(), '.') << name;
+  }
+  if (exists("points.1.node")) {
+    EXPECT_EQ(table(path("points.1.node")).size(), 7u);
+  }
+}
+
+}  // namespace
