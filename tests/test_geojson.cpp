@@ -8,6 +8,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <random>
 #include <set>
 #include <string>
 
@@ -305,6 +306,51 @@ TEST(GeoJson, GeoJsonStructureErrorsPointAtTheValue) {
                                "m", opt),
                  JsonParseError);
   }
+}
+
+// Mutated inputs either parse or throw JsonParseError: never anything else
+// (no crash, no other exception type, no hang).
+TEST(GeoJson, MutatedInputsFailCleanly) {
+  const std::string base = R"({"type":"FeatureCollection","features":[
+    {"type":"Feature","properties":{"zone":"a\u00e9","m":2},"geometry":{"type":"MultiPolygon","coordinates":[
+      [[[0,0],[4,0],[4,4],[0,4],[0,0]],[[1,1],[1,3],[3,3],[3,1],[1,1]]],[[[10,0],[12,0],[11,2.5e0],[10,0]]]]}},
+    {"type":"Feature","properties":null,"geometry":{"type":"GeometryCollection","geometries":[
+      {"type":"Polygon","coordinates":[[[20,0],[24,0],[24,1],[20,1],[20,0]]]},{"type":"Point","coordinates":[1,2]}]}}]})";
+  GeoJsonReadOptions opt;
+  opt.attribute_property = "zone";
+  opt.marker_property = "m";
+  std::mt19937 rng(12345);
+  const std::string alphabet = "{}[],:\"0123456789.-+eE \n\\tfnaul";
+  std::size_t parsed = 0, failed = 0;
+  for (int trial = 0; trial < 4000; ++trial) {
+    std::string s = base;
+    const int edits = 1 + static_cast<int>(rng() % 4);
+    for (int k = 0; k < edits; ++k) {
+      const std::size_t at = rng() % s.size();
+      switch (rng() % 4) {
+        case 0: s.erase(at, 1 + rng() % 8); break;
+        case 1: s.insert(at, 1, alphabet[rng() % alphabet.size()]); break;
+        case 2: s[at] = alphabet[rng() % alphabet.size()]; break;
+        default: s = s.substr(0, at); break;  // truncation
+      }
+      if (s.empty()) s = "{";
+    }
+    try {
+      const Pslg g = parse_geojson(s, "fuzz", opt);
+      for (const Segment& seg : g.segments) {
+        ASSERT_LT(seg.a, g.points.size());
+        ASSERT_LT(seg.b, g.points.size());
+        ASSERT_NE(seg.a, seg.b);
+      }
+      ++parsed;
+    } catch (const JsonParseError& e) {
+      EXPECT_GE(e.line(), 1u);
+      EXPECT_GE(e.column(), 1u);
+      ++failed;
+    }
+  }
+  EXPECT_GT(parsed, 0u);
+  EXPECT_GT(failed, 0u);
 }
 
 TEST(GeoJson, ReadFromFileNamesTheFile) {
