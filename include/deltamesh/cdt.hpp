@@ -5,18 +5,21 @@
 #include <string_view>
 #include <optional>
 
+#include "deltamesh/errors.hpp"
 #include "deltamesh/mesh.hpp"
 #include "deltamesh/pslg.hpp"
 
 namespace deltamesh {
 
 enum class CdtMethod {
-  Fast,     // default: the fastest method giving the CDT
+  Fast,     // default: the triangles crossed by the segment are removed and the two
+            // pseudo-polygons on either side retriangulated (constrained Delaunay)
   Ct,       // §1.2: rotary traversal + queue of flips; a constrained triangulation, not always Delaunay
   Lawson,   // §2.2: Ct, then constrained Lawson flips on the new edges: the CDT
   Lifting,  // §2.3: flips ordered through the lifting map (priority queue): the CDT
 };
 
+// "fast", "ct", "lawson", "lifting".
 std::string_view to_string(CdtMethod m);
 std::optional<CdtMethod> parse_cdt_method(std::string_view name);
 
@@ -28,25 +31,42 @@ struct CdtOptions {
 };
 
 struct CdtStats {
-  std::size_t segments_inserted = 0;
-  std::size_t segments_already_present = 0;
-  std::size_t flips = 0;                 // edge flips performed while recovering segments
+  std::size_t segments_inserted = 0;         // input segments of nonzero length
+  std::size_t segments_already_present = 0;  // ... that were an edge of the Delaunay triangulation already
+  std::size_t flips = 0;                 // edge flips performed while recovering segments (Ct, Lawson, Lifting)
+  std::size_t edges_crossed = 0;         // edges crossed by the segment pieces that had to be recovered
+  std::size_t cavity_triangles = 0;      // Fast: triangles removed and retriangulated
   std::size_t intersections = 0;         // crossing segment pairs resolved by a new vertex
-  std::size_t vertices_on_segments = 0;  // segments split at an input vertex lying on them
-  std::size_t overlaps_merged = 0;       // collinear overlapping segments merged
+  std::size_t vertices_on_segments = 0;  // segments split at a vertex lying exactly on them
+  std::size_t overlaps_merged = 0;       // segment pieces that were constrained already (collinear overlaps)
   std::size_t zero_length_segments = 0;  // ignored, with a warning
   std::size_t duplicate_vertices = 0;
+  // Robustness fallbacks (normally 0): Ct stalled or Lifting met an
+  // unflippable edge (degenerate input) and the piece was finished by Fast;
+  // a rounded intersection point did not fall inside the two triangles of
+  // the crossed edge and was inserted as a free vertex instead.
+  std::size_t method_fallbacks = 0;
+  std::size_t intersection_fallbacks = 0;
   double triangulate_seconds = 0.0;      // Delaunay of the vertices
   double segments_seconds = 0.0;         // segment recovery
 };
 
-// Two segments of the input cross and options.strict is set.
-class IntersectingSegments;
-
 // The constrained (Delaunay) triangulation of `pslg`: a closed triangulation
 // with ghost triangles, input segments present as chains of constrained edges
-// carrying their markers. Vertices 0..n-1 are the input's; vertices added at
+// carrying their markers. Vertices 0..n-1 are the input's (a duplicate stays
+// a vertex in no triangle and segments use its first copy); vertices added at
 // segment crossings follow.
+//
+// Degenerate input is handled as users expect: a vertex exactly on a segment
+// splits it; collinear overlapping segments merge (an edge constrained twice
+// keeps the first nonzero marker); crossing segments (topology decided by
+// exact predicates) get their intersection inserted as a new vertex, the
+// point rounded to doubles, and both are split there (IntersectingSegments
+// instead under options.strict); zero-length segments are ignored and counted.
+// Throws InputError for a segment endpoint out of range, for input the
+// Delaunay step rejects (non-finite, fewer than 3 distinct or all collinear
+// points), and if the number of added vertices exceeds the number of segment
+// pairs (it cannot on valid input: the guard against endless loops).
 Mesh constrained_triangulation(const Pslg& pslg, const CdtOptions& options = {}, CdtStats* stats = nullptr);
 
 }  // namespace deltamesh

@@ -36,6 +36,18 @@ class DelaunayInserter {
     return {v, tri_of(mesh_.out_edge(v))};
   }
 
+  // Inserts vertex v (in mesh.points() but in no triangle) by splitting the
+  // edge of half-edge e at it, then restores the Delaunay property by flips.
+  // The caller guarantees that v lies strictly inside the union of the two
+  // triangles of e, so the four new triangles are counter-clockwise; v need
+  // not lie exactly on the edge (a rounded segment intersection point). Both
+  // halves of the split edge keep its flags and marker.
+  Result insert_splitting_edge(HalfEdgeId e, VertexId v) {
+    insert_on_edge(e, v);
+    legalize(v);
+    return {v, tri_of(mesh_.out_edge(v))};
+  }
+
   // Adds p as a new vertex (unless it coincides with one) and inserts it.
   Result insert_point(const Point& p, TriId hint) {
     const Location loc = mesh_.locate(p, hint);

@@ -1,6 +1,11 @@
 #include "deltamesh/validate.hpp"
 
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <sstream>
+#include <unordered_map>
 
 #include "deltamesh/predicates.hpp"
 
@@ -11,6 +16,7 @@ std::string CheckReport::summary() const {
   if (ok()) {
     out << "mesh is valid: " << triangles << " triangles, " << edges << " edges, " << vertices_used
         << " vertices";
+    if (segments_checked > 0) out << ", " << segments_checked << " segments present";
   } else {
     out << problems.size() << " problem(s):";
     for (const std::string& p : problems) out << "\n  " << p;
@@ -32,6 +38,7 @@ class Checker {
     check_vertex_edges();
     if (opt_.delaunay) check_delaunay();
     check_boundary_and_euler();
+    if (opt_.pslg) check_segments(*opt_.pslg);
   }
 
  private:
@@ -250,6 +257,117 @@ class Checker {
     if (chi != expected)
       problem("Euler count V - E + F = ", chi, " but ", components, " component(s) with ", loops,
               " boundary loop(s) need ", expected, " (a vertex is shared by separate fans, or the mesh overlaps)");
+  }
+
+  // ---- segments of a PSLG as chains of constrained edges ------------------
+
+  void check_segments(const Pslg& g) {
+    const std::size_t nv = mesh_.num_vertices();
+    const std::size_t slots = mesh_.num_triangle_slots();
+    std::vector<char> used(nv, 0);
+    for (TriId t = 0; t < slots; ++t)
+      if (mesh_.is_real(t))
+        for (VertexId v : mesh_.triangle(t)) used[v] = 1;
+    // Constrained edges as adjacency lists (CSR), each edge once per end.
+    std::vector<std::uint32_t> start(nv + 1, 0);
+    auto for_each_constrained = [&](auto&& emit) {
+      for (TriId t = 0; t < slots; ++t) {
+        if (!mesh_.is_real(t)) continue;
+        for (int i = 0; i < 3; ++i) {
+          const HalfEdgeId e = 3 * t + i;
+          if (!mesh_.is_constrained(e)) continue;
+          const HalfEdgeId f = mesh_.twin(e);
+          if (f != kNone && f < e && mesh_.is_real(tri_of(f))) continue;  // counted from the other half
+          emit(mesh_.origin(e), mesh_.dest(e));
+        }
+      }
+    };
+    for_each_constrained([&](VertexId u, VertexId v) {
+      ++start[u + 1];
+      ++start[v + 1];
+    });
+    for (std::size_t v = 0; v < nv; ++v) start[v + 1] += start[v];
+    std::vector<VertexId> adj(start[nv]);
+    {
+      std::vector<std::uint32_t> fill(start.begin(), start.end() - 1);
+      for_each_constrained([&](VertexId u, VertexId v) {
+        adj[fill[u]++] = v;
+        adj[fill[v]++] = u;
+      });
+    }
+    // Duplicate endpoints stand for the used vertex at the same point.
+    std::unordered_map<std::uint64_t, std::vector<VertexId>> by_point;
+    auto point_key = [](const Point& p) {
+      std::uint64_t x, y;
+      std::memcpy(&x, &p.x, 8);
+      std::memcpy(&y, &p.y, 8);
+      return x * 0x9E3779B97F4A7C15ull ^ (y + 0x632BE59BD9B4E019ull + (x << 6) + (x >> 2));
+    };
+    auto canonical = [&](VertexId v) -> VertexId {
+      if (used[v]) return v;
+      if (by_point.empty())
+        for (VertexId w = 0; w < nv; ++w)
+          if (used[w]) by_point[point_key(mesh_.point(w))].push_back(w);
+      const auto it = by_point.find(point_key(mesh_.point(v)));
+      if (it != by_point.end())
+        for (VertexId w : it->second)
+          if (mesh_.point(w) == mesh_.point(v)) return w;
+      return kNone;
+    };
+    std::vector<std::uint32_t> seen(nv, 0);
+    std::uint32_t stamp = 0;
+    std::vector<VertexId> stack;
+    for (std::size_t i = 0; i < g.segments.size(); ++i) {
+      const Segment& s = g.segments[i];
+      if (s.a >= nv || s.b >= nv) {
+        problem("segment ", i, " refers to vertex ", std::max(s.a, s.b), " of ", nv);
+        continue;
+      }
+      const VertexId a = canonical(s.a), b = canonical(s.b);
+      if (a == kNone || b == kNone || a == b) continue;  // carved away, or zero length
+      ++rep_.segments_checked;
+      ++stamp;
+      if (!chain_exists(a, b, start, adj, seen, stamp, stack))
+        problem("segment ", i, " (", s.a, "-", s.b, ") is not a chain of constrained edges");
+    }
+  }
+
+  // Depth-first search from a over constrained edges whose far vertex lies
+  // on segment ab (exactly), or within rounding distance of it and of its
+  // extent (vertices added where rounded crossings bend the chain slightly,
+  // even back and forth), until b is reached.
+  bool chain_exists(VertexId a, VertexId b, const std::vector<std::uint32_t>& start, const std::vector<VertexId>& adj,
+                    std::vector<std::uint32_t>& seen, std::uint32_t stamp, std::vector<VertexId>& stack) const {
+    const Point pa = mesh_.point(a), pb = mesh_.point(b);
+    const bool use_x = std::fabs(pb.x - pa.x) >= std::fabs(pb.y - pa.y);
+    const double dir = use_x ? (pb.x > pa.x ? 1.0 : -1.0) : (pb.y > pa.y ? 1.0 : -1.0);
+    auto key = [&](const Point& p) { return dir * (use_x ? p.x : p.y); };
+    const double len = std::hypot(pb.x - pa.x, pb.y - pa.y);
+    const double scale = std::max({std::fabs(pa.x), std::fabs(pa.y), std::fabs(pb.x), std::fabs(pb.y), len});
+    const double tol = 1e-9 * scale;
+    const double ka = key(pa), kb = key(pb);
+    stack.clear();
+    stack.push_back(a);
+    seen[a] = stamp;
+    while (!stack.empty()) {
+      const VertexId u = stack.back();
+      stack.pop_back();
+      for (std::uint32_t k = start[u]; k < start[u + 1]; ++k)
+        if (adj[k] == b) return true;
+      for (std::uint32_t k = start[u]; k < start[u + 1]; ++k) {
+        const VertexId w = adj[k];
+        if (seen[w] == stamp) continue;
+        const Point& pw = mesh_.point(w);
+        const double kw = key(pw);
+        const double o = orient2d(pa, pb, pw);
+        const bool on_segment = o == 0.0 && kw > ka && kw < kb;
+        const bool near = std::fabs(o) <= tol * len && kw > ka - tol && kw < kb + tol;
+        if (!on_segment && !near) continue;
+        seen[w] = stamp;
+        stack.push_back(w);
+      }
+    }
+    return false;
   }
 
   const Mesh& mesh_;

@@ -1,0 +1,363 @@
+// Constrained triangulation of a PSLG: Delaunay triangulation of the
+// vertices, then segments inserted one by one. This file holds the public
+// entry point and the front end shared by every method: tracing a segment
+// from one endpoint (rotary traversal, then a walk along it, §1.2.1), and
+// splitting it where it meets a vertex or crosses an earlier segment.
+#include "deltamesh/cdt.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <string>
+
+#include "algo/cdt_builder.hpp"
+#include "deltamesh/delaunay.hpp"
+#include "deltamesh/errors.hpp"
+#include "deltamesh/predicates.hpp"
+
+namespace deltamesh {
+
+std::string_view to_string(CdtMethod m) {
+  switch (m) {
+    case CdtMethod::Fast: return "fast";
+    case CdtMethod::Ct: return "ct";
+    case CdtMethod::Lawson: return "lawson";
+    case CdtMethod::Lifting: return "lifting";
+  }
+  return "unknown";
+}
+
+std::optional<CdtMethod> parse_cdt_method(std::string_view name) {
+  for (CdtMethod m : {CdtMethod::Fast, CdtMethod::Ct, CdtMethod::Lawson, CdtMethod::Lifting})
+    if (name == to_string(m)) return m;
+  return std::nullopt;
+}
+
+namespace detail {
+
+namespace {
+
+int sgn(double v) { return v > 0.0 ? 1 : (v < 0.0 ? -1 : 0); }
+
+// u is collinear with a and b (exactly): is it on the ray from a towards b?
+// Differences of doubles have exact signs, so this is exact.
+bool same_direction(const Point& a, const Point& u, const Point& b) {
+  return sgn(u.x - a.x) == sgn(b.x - a.x) && sgn(u.y - a.y) == sgn(b.y - a.y);
+}
+
+std::uint64_t saturating_pairs(std::uint64_t s) {
+  if (s > (std::uint64_t{1} << 31)) return std::uint64_t{1} << 62;
+  return s * (s > 0 ? s - 1 : 0) / 2;
+}
+
+}  // namespace
+
+CdtBuilder::CdtBuilder(Mesh& mesh, const Pslg& pslg, const CdtOptions& options, CdtStats& stats)
+    : mesh_(mesh),
+      pslg_(pslg),
+      opt_(options),
+      st_(stats),
+      pts_(mesh.points_mut()),
+      tv_(mesh.tri_v_mut()),
+      tw_(mesh.twin_mut()),
+      flags_(mesh.edge_flags_mut()),
+      seg_of_(mesh.edge_markers_mut()),
+      ve_(mesh.vert_edge_mut()),
+      inserter_(mesh) {
+  // Both per-half-edge arrays exist from now on, so the mesh's topological
+  // operations keep them in step.
+  if (flags_.size() != tv_.size()) flags_.assign(tv_.size(), 0);
+  if (seg_of_.size() != tv_.size()) seg_of_.assign(tv_.size(), 0);
+  max_steiner_ = static_cast<std::size_t>(saturating_pairs(pslg.segments.size())) + 16;
+  crossings_.reserve(64);
+}
+
+void CdtBuilder::insert_segment(VertexId a, VertexId b, std::uint32_t index) {
+  pieces_.clear();
+  pieces_.push_back({a, b, index});
+  const std::size_t steiner_start = steiner_;
+  std::size_t processed = 0;
+  bool whole = true;
+  while (!pieces_.empty()) {
+    const Piece p = pieces_.back();
+    pieces_.pop_back();
+    if (p.a == p.b) continue;  // a crossing snapped onto an endpoint
+    // Each piece either ends, or moves on past a vertex on the segment, or
+    // adds a crossing vertex: bounded by the vertices there are.
+    if (++processed > 16 + 4 * pts_.size() + 8 * (steiner_ - steiner_start))
+      throw InputError("segment " + std::to_string(index) +
+                       " could not be inserted: too many pieces (numerically hopeless input?)");
+    process(p, whole);
+    whole = false;
+  }
+}
+
+void CdtBuilder::process(const Piece& p, bool whole) {
+  const Trace tr = trace(p.a, p.b);
+  switch (tr.kind) {
+    case TraceKind::Present:
+      if (flags_[tr.edge] & kConstrained)
+        ++st_.overlaps_merged;
+      else if (whole)
+        ++st_.segments_already_present;
+      mark(tr.edge, p.seg);
+      break;
+    case TraceKind::OnVertex:
+      ++st_.vertices_on_segments;
+      if (crossings_.empty()) {
+        if (flags_[tr.edge] & kConstrained) ++st_.overlaps_merged;
+        mark(tr.edge, p.seg);
+      } else {
+        recover(p.a, tr.vertex, p.seg);
+      }
+      pieces_.push_back({tr.vertex, p.b, p.seg});
+      break;
+    case TraceKind::Constrained:
+      resolve_crossing(p, tr.edge);
+      break;
+    case TraceKind::Clean:
+      recover(p.a, p.b, p.seg);
+      break;
+  }
+}
+
+CdtBuilder::Trace CdtBuilder::trace(VertexId a, VertexId b) {
+  crossings_.clear();
+  const HalfEdgeId start = ve_[a];
+  const std::size_t limit = tv_.size() + 3;
+  // Rotary traversal around a (§1.2.1): first, is ab an edge already? Only
+  // integer comparisons, so segments present in the Delaunay triangulation
+  // cost no predicate at all.
+  HalfEdgeId e = start;
+  std::size_t guard = 0;
+  do {
+    if (tv_[next_edge(e)] == b) return {TraceKind::Present, e};
+    e = tw_[prev_edge(e)];
+  } while (e != start && ++guard < limit);
+
+  // Then the triangle around a that the segment leaves through (its far edge
+  // crosses ab), or a neighbour exactly on the segment. Orientations are
+  // exact, so exactly one of these exists in a valid triangulation.
+  const Point pa = pt(a), pb = pt(b);
+  e = start;
+  VertexId u = tv_[next_edge(e)];
+  double ou = u == kInfinite ? 0.0 : orient2d(pa, pb, pt(u));
+  HalfEdgeId h = kNone;
+  guard = 0;
+  do {
+    const VertexId w = tv_[prev_edge(e)];
+    const double ow = w == kInfinite ? 0.0 : orient2d(pa, pb, pt(w));
+    if (u != kInfinite) {
+      if (ou == 0.0 && same_direction(pa, pt(u), pb)) return {TraceKind::OnVertex, e, u};
+      if (ou < 0.0 && w != kInfinite && ow > 0.0) {
+        h = next_edge(e);  // u -> w: u right of ab, w left
+        break;
+      }
+    }
+    e = tw_[prev_edge(e)];
+    u = w;
+    ou = ow;
+  } while (e != start && ++guard < limit);
+  if (h == kNone)
+    throw InputError("internal error: no triangle around vertex " + std::to_string(a) + " meets the segment to " +
+                     std::to_string(b));
+
+  // Walk along ab through the triangles it crosses. h runs from the right
+  // of ab to its left, in the triangle on a's side.
+  for (guard = 0; guard < limit; ++guard) {
+    if (flags_[h] & kConstrained) return {TraceKind::Constrained, h};
+    crossings_.push_back(h);
+    const HalfEdgeId g = tw_[h];  // w -> u in the next triangle (w, u, z)
+    const VertexId z = tv_[prev_edge(g)];
+    if (z == b) return {TraceKind::Clean};
+    if (z == kInfinite)
+      throw InputError("internal error: the segment from " + std::to_string(a) + " to " + std::to_string(b) +
+                       " leaves the convex hull");
+    const double oz = orient2d(pa, pb, pt(z));
+    if (oz == 0.0) return {TraceKind::OnVertex, kNone, z};
+    h = oz < 0.0 ? prev_edge(g) : next_edge(g);
+  }
+  throw InputError("internal error: the walk along a segment does not end");
+}
+
+void CdtBuilder::mark(HalfEdgeId e, std::uint32_t seg) {
+  const HalfEdgeId f = tw_[e];
+  int keep = static_cast<int>(seg);
+  if (flags_[e] & kConstrained) {
+    // An edge of two overlapping segments keeps the first nonzero marker.
+    const int old = seg_of_[e];
+    if (pslg_.segments[static_cast<std::size_t>(old)].marker != 0 || pslg_.segments[seg].marker == 0) keep = old;
+  }
+  flags_[e] |= kConstrained;
+  flags_[f] |= kConstrained;
+  seg_of_[e] = keep;
+  seg_of_[f] = keep;
+}
+
+bool CdtBuilder::split_fits(HalfEdgeId cd, const Point& p) const {
+  const VertexId c = tv_[cd], d = tv_[next_edge(cd)];
+  const VertexId x = tv_[prev_edge(cd)], y = tv_[prev_edge(tw_[cd])];
+  if (x == kInfinite || y == kInfinite) return false;
+  return orient2d(pt(c), p, pt(x)) > 0 && orient2d(p, pt(d), pt(x)) > 0 && orient2d(pt(d), p, pt(y)) > 0 &&
+         orient2d(p, pt(c), pt(y)) > 0;
+}
+
+void CdtBuilder::resolve_crossing(const Piece& p, HalfEdgeId cd) {
+  const auto other = static_cast<std::uint32_t>(seg_of_[cd]);
+  if (opt_.strict) throw IntersectingSegments(std::min(other, p.seg), std::max(other, p.seg));
+  if (++steiner_ > max_steiner_)
+    throw InputError("more vertices added at segment crossings than there are segment pairs (" +
+                     std::to_string(max_steiner_) + "): numerically hopeless input?");
+  const VertexId c = tv_[cd], d = tv_[next_edge(cd)];
+  const Point pa = pt(p.a), pb = pt(p.b), pc = pt(c), pd = pt(d);
+  // The intersection point in parametric form along each segment; the exact
+  // orientations give the parameters' signs, so both lie in [0, 1].
+  const double oc = orient2d(pa, pb, pc), od = orient2d(pa, pb, pd);  // oc < 0 < od
+  const double oa = orient2d(pc, pd, pa), ob = orient2d(pc, pd, pb);  // opposite signs
+  const double t = oc / (oc - od), s = oa / (oa - ob);
+  Point cand[3];
+  cand[0] = {pc.x + t * (pd.x - pc.x), pc.y + t * (pd.y - pc.y)};
+  cand[1] = {pa.x + s * (pb.x - pa.x), pa.y + s * (pb.y - pa.y)};
+  cand[2] = {0.5 * (cand[0].x + cand[1].x), 0.5 * (cand[0].y + cand[1].y)};
+  const double lox = std::max(std::min(pa.x, pb.x), std::min(pc.x, pd.x));
+  const double hix = std::min(std::max(pa.x, pb.x), std::max(pc.x, pd.x));
+  const double loy = std::max(std::min(pa.y, pb.y), std::min(pc.y, pd.y));
+  const double hiy = std::min(std::max(pa.y, pb.y), std::max(pc.y, pd.y));
+  for (Point& q : cand) {
+    if (!(q.x >= lox)) q.x = lox;  // also catches NaN
+    if (q.x > hix) q.x = hix;
+    if (!(q.y >= loy)) q.y = loy;
+    if (q.y > hiy) q.y = hiy;
+    // Keep coordinates in the predicates' exact range.
+    if (std::fabs(q.x) < kMinCoordinate) q.x = 0.0;
+    if (std::fabs(q.y) < kMinCoordinate) q.y = 0.0;
+  }
+  for (const Point& q : cand) {
+    if (!split_fits(cd, q)) continue;
+    const VertexId v = mesh_.add_vertex(q);
+    inserter_.insert_splitting_edge(cd, v);  // both halves stay constrained with cd's segment
+    ++st_.intersections;
+    pieces_.push_back({v, p.b, p.seg});
+    pieces_.push_back({p.a, v, p.seg});
+    return;
+  }
+  // The rounded point is not inside the two triangles of cd (a vertex lies
+  // within rounding distance of cd). Release cd, insert the point as a free
+  // vertex (or use the vertex it coincides with), and insert both segments
+  // again through it.
+  ++st_.intersection_fallbacks;
+  const HalfEdgeId dc = tw_[cd];
+  flags_[cd] &= static_cast<std::uint8_t>(~kConstrained);
+  flags_[dc] &= static_cast<std::uint8_t>(~kConstrained);
+  seg_of_[cd] = seg_of_[dc] = 0;
+  // cd was locally Delaunay only as a segment: flip where needed first, so
+  // that the triangulation is the CDT of what is constrained now.
+  const TriId hint = tri_of(cd);
+  lawson_stack_.clear();
+  lawson_stack_.push_back(cd);
+  lawson_flips(lawson_stack_);
+  const std::size_t before = pts_.size();
+  const VertexId v = inserter_.insert_point(cand[0], hint).vertex;
+  if (v == kNone) throw InputError("internal error: a segment crossing could not be located");
+  if (pts_.size() > before) ++st_.intersections;
+  pieces_.push_back({v, d, other});
+  pieces_.push_back({c, v, other});
+  pieces_.push_back({v, p.b, p.seg});
+  pieces_.push_back({p.a, v, p.seg});
+}
+
+void CdtBuilder::finish() {
+  bool any_marker = false, any_constrained = false;
+  for (HalfEdgeId e = 0; e < tv_.size(); ++e) {
+    if (tv_[e - e % 3] != kNone && (flags_[e] & kConstrained)) {
+      seg_of_[e] = pslg_.segments[static_cast<std::size_t>(seg_of_[e])].marker;
+      any_marker = any_marker || seg_of_[e] != 0;
+      any_constrained = true;
+    } else {
+      seg_of_[e] = 0;
+    }
+  }
+  if (!any_marker) seg_of_.clear();
+  if (!any_constrained) flags_.clear();
+}
+
+}  // namespace detail
+
+namespace {
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+}  // namespace
+
+Mesh constrained_triangulation(const Pslg& pslg, const CdtOptions& options, CdtStats* stats) {
+  CdtStats local;
+  CdtStats& st = stats ? *stats : local;
+  st = CdtStats{};
+  const std::size_t n = pslg.points.size();
+  if (pslg.segments.size() >= (std::size_t{1} << 31))
+    throw InputError("too many segments: at most 2147483647 are supported");
+  for (std::size_t i = 0; i < pslg.segments.size(); ++i) {
+    const Segment& s = pslg.segments[i];
+    if (s.a >= n || s.b >= n)
+      throw InputError("segment " + std::to_string(i) + " refers to vertex " + std::to_string(std::max(s.a, s.b)) +
+                           " but there are " + std::to_string(n) + " vertices",
+                       i);
+  }
+  auto t0 = Clock::now();
+  DelaunayStats ds;
+  DelaunayOptions dopt;
+  dopt.keep_ghosts = true;
+  Mesh mesh = delaunay(pslg.points, dopt, &ds);
+  st.duplicate_vertices = ds.duplicates;
+  // Of equal points the Delaunay step keeps the first in its insertion
+  // order; keep the first in input order instead (deterministic, and what a
+  // user numbering vertices expects), and send segments to it.
+  std::vector<VertexId> canonical;
+  if (ds.duplicates > 0) {
+    canonical.resize(n);
+    for (VertexId v = 0; v < n; ++v) canonical[v] = v;
+    for (VertexId v = 0; v < n; ++v) {
+      const VertexId k = ds.duplicate_of[v];
+      if (k != kNone && v < canonical[k]) canonical[k] = v;  // lowest copy of kept vertex k
+    }
+    std::vector<VertexId>& tv = mesh.tri_v_mut();
+    std::vector<HalfEdgeId>& ve = mesh.vert_edge_mut();
+    const std::vector<HalfEdgeId>& tw = mesh.twin_mut();
+    for (VertexId k = 0; k < n; ++k) {
+      const VertexId low = canonical[k];
+      if (ds.duplicate_of[k] != kNone || low == k) continue;
+      // Relabel k as its lowest copy around k's fan.
+      const HalfEdgeId start = ve[k];
+      HalfEdgeId e = start;
+      do {
+        tv[e] = low;
+        e = tw[prev_edge(e)];
+      } while (e != start);
+      ve[low] = start;
+      ve[k] = kNone;
+    }
+    for (VertexId v = 0; v < n; ++v)
+      if (ds.duplicate_of[v] != kNone) canonical[v] = canonical[ds.duplicate_of[v]];
+  }
+  st.triangulate_seconds = seconds_since(t0);
+  if (pslg.segments.empty()) return mesh;
+
+  t0 = Clock::now();
+  {
+    detail::CdtBuilder builder(mesh, pslg, options, st);
+    auto canon = [&](VertexId v) { return canonical.empty() ? v : canonical[v]; };
+    for (std::size_t i = 0; i < pslg.segments.size(); ++i) {
+      const VertexId a = canon(pslg.segments[i].a), b = canon(pslg.segments[i].b);
+      if (a == b) {
+        ++st.zero_length_segments;
+        continue;
+      }
+      ++st.segments_inserted;
+      builder.insert_segment(a, b, static_cast<std::uint32_t>(i));
+    }
+    builder.finish();
+  }
+  st.segments_seconds = seconds_since(t0);
+  return mesh;
+}
+
+}  // namespace deltamesh

@@ -1,0 +1,119 @@
+// Segment insertion into a closed triangulation (ghost triangles): the
+// shared front end (tracing a segment, splitting it at vertices on it and at
+// crossings with earlier segments) and the seed's recovery methods.
+#pragma once
+#include <cstdint>
+#include <deque>
+#include <unordered_set>
+#include <vector>
+
+#include "algo/cdt_lifting.hpp"
+#include "algo/insertion.hpp"
+#include "deltamesh/cdt.hpp"
+#include "deltamesh/mesh.hpp"
+#include "deltamesh/pslg.hpp"
+
+namespace deltamesh::detail {
+
+// While segments are inserted, the marker slot of a constrained half-edge
+// holds the index of the input segment it belongs to (flips and splits carry
+// markers along, so the mapping edge -> segment costs nothing to maintain);
+// finish() replaces the indices by the segments' markers.
+class CdtBuilder {
+ public:
+  CdtBuilder(Mesh& mesh, const Pslg& pslg, const CdtOptions& options, CdtStats& stats);
+
+  // Inserts input segment `index` between (already merged) vertices a != b.
+  void insert_segment(VertexId a, VertexId b, std::uint32_t index);
+  // Indices -> markers; clears the marker array when every marker is 0.
+  void finish();
+
+ private:
+  struct Piece {
+    VertexId a, b;
+    std::uint32_t seg;
+  };
+  enum class TraceKind : std::uint8_t {
+    Present,      // edge a->b exists: `edge` is it
+    OnVertex,     // vertex `vertex` lies on the open segment; crossings_ holds the edges crossed before it
+                  // (when empty, `edge` is the edge a->vertex)
+    Constrained,  // `edge` is a constrained edge crossing the open segment (origin right, dest left)
+    Clean,        // crossings_ holds every edge crossing ab, in order from a
+  };
+  struct Trace {
+    TraceKind kind;
+    HalfEdgeId edge = kNone;
+    VertexId vertex = kNone;
+  };
+
+  void process(const Piece& piece, bool whole);
+  Trace trace(VertexId a, VertexId b);
+  void mark(HalfEdgeId e, std::uint32_t seg);
+  void resolve_crossing(const Piece& piece, HalfEdgeId cd);
+  bool split_fits(HalfEdgeId cd, const Point& p) const;
+
+  // Recovery of a clean piece (crossings_ filled by trace, all unconstrained).
+  void recover(VertexId a, VertexId b, std::uint32_t seg);
+  void recover_fast(VertexId a, VertexId b, std::uint32_t seg);
+  // Cuts the excursions to enclosed vertices out of a cavity side's chain;
+  // false if the chain is not a walk out and back (a cavity with a hole).
+  bool cut_excursions(std::vector<VertexId>& chain, std::vector<HalfEdgeId>& out);
+  // Ct (§1.2.2); with `lawson`, then constrained Lawson flips (§2.2).
+  void recover_flips(VertexId a, VertexId b, std::uint32_t seg, bool lawson);
+  void recover_lifting(VertexId a, VertexId b, std::uint32_t seg);
+  // A flip method gave up (degenerate input): retrace and finish with Fast.
+  void fallback_fast(VertexId a, VertexId b, std::uint32_t seg);
+  // Fast met a cavity that encloses triangles: Lifting instead.
+  void fast_gave_up(VertexId a, VertexId b, std::uint32_t seg);
+  bool in_fallback_ = false;
+  void lawson_flips(std::vector<HalfEdgeId>& stack);
+  bool crosses(VertexId a, VertexId b, VertexId c, VertexId d) const;
+
+  HalfEdgeId apex_edge(HalfEdgeId e) const { return prev_edge(e); }
+  const Point& pt(VertexId v) const { return pts_[v]; }
+
+  Mesh& mesh_;
+  const Pslg& pslg_;
+  const CdtOptions& opt_;
+  CdtStats& st_;
+  std::vector<Point>& pts_;
+  std::vector<VertexId>& tv_;
+  std::vector<HalfEdgeId>& tw_;
+  std::vector<std::uint8_t>& flags_;
+  std::vector<int>& seg_of_;  // the mesh's marker array, holding segment indices for now
+  std::vector<HalfEdgeId>& ve_;
+  DelaunayInserter inserter_;
+
+  std::vector<Piece> pieces_;
+  std::vector<HalfEdgeId> crossings_;
+  std::size_t steiner_ = 0;
+  std::size_t max_steiner_ = 0;
+  std::size_t piece_budget_ = 0;
+
+  // Scratch of the recovery methods, kept to avoid reallocations.
+  std::vector<VertexId> left_, right_;
+  std::vector<HalfEdgeId> left_out_, right_out_;
+  std::vector<TriId> slots_;
+  std::vector<VertexId> cut_vertices_;
+  std::vector<HalfEdgeId> cut_edges_;
+  std::vector<std::uint32_t> vstamp_, vpos_;
+  std::uint32_t vstamp_now_ = 0;
+  struct Job {
+    std::uint32_t lo, hi;
+    HalfEdgeId parent;
+  };
+  std::vector<Job> jobs_;
+  std::vector<HalfEdgeId> lawson_stack_;
+  std::deque<std::pair<VertexId, VertexId>> queue_;
+  std::unordered_set<std::uint64_t> flipped_;
+  struct Event {
+    EventTime time;
+    Quad quad;
+    VertexId x, y, p, q;  // edge x->y, apex p on its left, q on its right
+  };
+  std::vector<Event> events_;
+  std::vector<std::uint32_t> cavity_stamp_;  // per triangle slot: == stamp_ when in the current cavity
+  std::uint32_t stamp_ = 0;
+};
+
+}  // namespace deltamesh::detail
