@@ -504,6 +504,24 @@ TEST_F(Formats, GeoJsonWrittenIsValidJsonWithProperties) {
   EXPECT_EQ(r.out, std::to_string(m.num_triangles()) + " " + std::to_string(cells.cells.size()) + " 0 1.0\n");
 }
 
+TEST_F(Formats, GeoJsonSegmentsLayer) {
+  const Mesh m = sample_mesh(40);
+  const Expect x = expected(m);
+  GeoJsonWriteOptions opt;
+  opt.triangles = false;
+  opt.segments = true;
+  write_geojson(m, path("s.geojson"), opt);
+  REQUIRE_TOOL(have_python(), "python3");
+  const Result r = py("import sys, json, collections\n"
+                      "d = json.load(open(sys.argv[1]))\n"
+                      "c = collections.Counter(f['properties']['marker'] for f in d['features']\n"
+                      "                        if f['geometry']['type'] == 'LineString')\n"
+                      "print(len(d['features']), c[1], c[5])\n",
+                      {path("s.geojson")});
+  EXPECT_EQ(r.out, std::to_string(x.lines) + " " + std::to_string(x.per_marker.at(1)) + " " +
+                       std::to_string(x.per_marker.at(5)) + "\n");
+}
+
 TEST_F(Formats, OffReadByMeshio) {
   const Mesh m = sample_mesh(40);
   write_off(m, path("a.off"));

@@ -118,6 +118,27 @@ TEST(Voronoi, DualGraphCountsAndGeometry) {
   }
 }
 
+// Vertex attributes are interpolated linearly at the circumcentres: an
+// attribute that is a linear function of position is reproduced exactly.
+TEST(Voronoi, AttributesInterpolatedAtCircumcentres) {
+  Mesh m = random_mesh(80, 11);
+  m.set_num_vertex_attributes(2);
+  for (VertexId v = 0; v < m.num_vertices(); ++v) {
+    const Point p = m.point(v);
+    m.vertex_attributes().push_back(2.0 * p.x - 3.0 * p.y + 1.0);
+    m.vertex_attributes().push_back(7.0);
+  }
+  const VoronoiDiagram d = voronoi_diagram(m);
+  ASSERT_EQ(d.num_attributes, 2u);
+  ASSERT_EQ(d.attributes.size(), 2 * d.vertices.size());
+  for (std::size_t i = 0; i < d.vertices.size(); ++i) {
+    const Point c = d.vertices[i];
+    const double expect = 2.0 * c.x - 3.0 * c.y + 1.0;
+    EXPECT_NEAR(d.attributes[2 * i], expect, 1e-6 * (1.0 + std::fabs(c.x) + std::fabs(c.y)));
+    EXPECT_NEAR(d.attributes[2 * i + 1], 7.0, 1e-6 * (1.0 + std::fabs(c.x) + std::fabs(c.y)));
+  }
+}
+
 TEST(Voronoi, TriangleVNodeAndVEdgeFiles) {
   const Mesh m = random_mesh(60, 9);
   const VoronoiDiagram d = voronoi_diagram(m);

@@ -86,6 +86,9 @@ void write_vtk(const Mesh& mesh, const std::string& path, const VtkOptions& opti
 
 struct GeoJsonWriteOptions {
   bool triangles = true;  // one Polygon feature per triangle
+  // Also one LineString feature per boundary or segment edge (kind
+  // "segment", properties id, marker), for a boundary layer in GIS.
+  bool segments = false;
   // Also one Polygon feature per bounded Voronoi cell (kind "voronoi_cell").
   const BoundedVoronoi* voronoi = nullptr;
 };

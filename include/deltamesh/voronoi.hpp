@@ -22,6 +22,11 @@ struct VoronoiDiagram {
   // One Voronoi vertex per live real triangle, in output (.ele) order: the
   // triangle's circumcentre.
   std::vector<Point> vertices;
+  // The mesh's vertex attributes at each Voronoi vertex (num_attributes
+  // per vertex): the linear interpolation over its triangle, evaluated at
+  // the circumcentre (an extrapolation when it lies outside the triangle).
+  std::size_t num_attributes = 0;
+  std::vector<double> attributes;
   struct Edge {
     std::uint32_t a = 0;       // Voronoi vertex (the triangle on the left of `delaunay_edge`)
     std::uint32_t b = kNone;   // the other Voronoi vertex, kNone for an infinite ray
@@ -37,8 +42,8 @@ struct VoronoiDiagram {
 
 VoronoiDiagram voronoi_diagram(const Mesh& mesh);
 
-// Triangle's .v.node: "<#vertices> 2 0 0", then "<id> <x> <y>" (no
-// attributes, no markers). first_index 0 or 1 as the other output files.
+// Triangle's .v.node: "<#vertices> 2 <#attributes> 0", then "<id> <x> <y>
+// [attributes]" (no markers). first_index 0 or 1 as the other output files.
 void write_voronoi_node(const VoronoiDiagram& diagram, const std::string& path, int first_index = 0);
 // Triangle's .v.edge: "<#edges> 0", then "<id> <a> <b>" for finite edges
 // and "<id> <a> -1 <dx> <dy>" for rays (-1 whatever first_index is).

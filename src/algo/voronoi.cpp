@@ -154,11 +154,29 @@ VoronoiDiagram voronoi_diagram(const Mesh& mesh) {
   VoronoiDiagram d;
   const std::size_t slots = mesh.num_triangle_slots();
   std::vector<std::uint32_t> index(slots, kNone);
+  const std::size_t na = mesh.num_vertex_attributes();
+  const std::vector<double>& attr = mesh.vertex_attributes();
+  d.num_attributes = na;
   for (TriId t = 0; t < slots; ++t) {
     if (!mesh.is_real(t)) continue;
     index[t] = static_cast<std::uint32_t>(d.vertices.size());
     const auto v = mesh.triangle(t);
-    d.vertices.push_back(circumcentre(mesh.point(v[0]), mesh.point(v[1]), mesh.point(v[2])));
+    const Point &a = mesh.point(v[0]), &b = mesh.point(v[1]), &c = mesh.point(v[2]);
+    const Point cc = circumcentre(a, b, c);
+    d.vertices.push_back(cc);
+    if (na == 0) continue;
+    // Barycentric coordinates of the circumcentre (1 - xi - eta, xi, eta).
+    const double det = cross(b.x - a.x, b.y - a.y, c.x - a.x, c.y - a.y);
+    const double xi = cross(cc.x - a.x, cc.y - a.y, c.x - a.x, c.y - a.y) / det;
+    const double eta = cross(b.x - a.x, b.y - a.y, cc.x - a.x, cc.y - a.y) / det;
+    for (std::size_t k = 0; k < na; ++k) {
+      const auto at = [&](VertexId u) {
+        const std::size_t i = std::size_t{u} * na + k;
+        return i < attr.size() ? attr[i] : 0.0;
+      };
+      const double fa = at(v[0]);
+      d.attributes.push_back(fa + xi * (at(v[1]) - fa) + eta * (at(v[2]) - fa));
+    }
   }
   for (TriId t = 0; t < slots; ++t) {
     if (!mesh.is_real(t)) continue;

@@ -62,6 +62,21 @@ void write_geojson(const Mesh& mesh, const std::string& path, const GeoJsonWrite
       out.put("}}");
     }
   }
+  if (options.segments) {
+    const std::vector<io::LineEdge> lines = io::boundary_and_segment_edges(mesh);
+    for (std::size_t i = 0; i < lines.size(); ++i) {
+      begin_feature();
+      out.put("{\"type\":\"Feature\",\"geometry\":{\"type\":\"LineString\",\"coordinates\":[");
+      put_position(out, mesh.point(mesh.origin(lines[i].e)));
+      out.put(',');
+      put_position(out, mesh.point(mesh.dest(lines[i].e)));
+      out.put("]},\"properties\":{\"kind\":\"segment\",\"id\":");
+      out.put_uint(i);
+      out.put(",\"marker\":");
+      out.put_int(lines[i].marker);
+      out.put("}}");
+    }
+  }
   if (options.voronoi) {
     for (const VoronoiCell& cell : options.voronoi->cells) {
       if (cell.ring.size() < 3) continue;
