@@ -203,6 +203,12 @@ TEST_F(Cli, PolyWritesNodeElePoly) {
   EXPECT_EQ(threes, 6);
   EXPECT_EQ(twos, 6);
   EXPECT_EQ(zeros, 2);
+  // Then the input's hole and regions, so the .poly describes the same domain.
+  ASSERT_EQ(poly.size(), 2u + 14u + 1u + 1u + 1u + 2u);
+  EXPECT_EQ(poly[16], (std::vector<std::string>{"1"}));
+  EXPECT_EQ(poly[17], (std::vector<std::string>{"1", "2", "2.5"}));
+  EXPECT_EQ(poly[18], (std::vector<std::string>{"2"}));
+  EXPECT_EQ(poly[20], (std::vector<std::string>{"2", "0.5", "3.5", "2", "0.5"}));
   // The unused vertex in the hole stays in the .node file (as in Triangle).
   EXPECT_EQ(table(path("square_hole.1.node"))[0][0], "13");
 }

@@ -419,6 +419,33 @@ TEST(Pipeline, InteriorVertexOnNoSegmentGetsZero) {
   for (VertexId v = 0; v < 4; ++v) EXPECT_EQ(m.vertex_markers()[v], 1);
 }
 
+TEST(Pipeline, FinishVertexMarkersForVerticesAddedLater) {
+  Builder b;
+  b.square(0, 0, 4, 4, 5);
+  b.point(2, 2);
+  Mesh m = mesh(b.g);
+  // Split a boundary segment and an interior edge as refinement would.
+  HalfEdgeId bottom = kNone, inner = kNone;
+  for (HalfEdgeId e = 0; e < m.triangle_vertices().size(); ++e) {
+    if (m.twin(e) == kNone && m.point(m.origin(e)).y == 0 && m.point(m.dest(e)).y == 0) bottom = e;
+    if (m.twin(e) != kNone && (m.origin(e) == 4 || m.dest(e) == 4)) inner = e;
+  }
+  ASSERT_NE(bottom, kNone);
+  ASSERT_NE(inner, kNone);
+  const Point a = m.point(m.origin(bottom)), c = m.point(m.dest(bottom));
+  const VertexId on_segment = m.add_vertex({(a.x + c.x) / 2, 0});
+  m.split_edge(bottom, on_segment);
+  const Point p = m.point(m.origin(inner)), q = m.point(m.dest(inner));
+  const VertexId interior = m.add_vertex({(p.x + q.x) / 2, (p.y + q.y) / 2});
+  m.split_edge(m.find_edge(m.origin(inner), m.dest(inner)), interior);
+  m.compact();
+  finish_vertex_markers(m);
+  ASSERT_EQ(m.vertex_markers().size(), 7u);
+  EXPECT_EQ(m.vertex_markers()[on_segment], 5);
+  EXPECT_EQ(m.vertex_markers()[interior], 0);
+  EXPECT_EQ(m.vertex_markers()[4], 0);
+}
+
 TEST(Pipeline, PointSetWithoutSegments) {
   Builder b;
   b.square(0, 0, 4, 4);  // segments are ignored without use_segments

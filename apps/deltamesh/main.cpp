@@ -152,6 +152,8 @@ class Run {
     dm::TriangleWriteOptions wopt;
     wopt.first_index = opt_.zero_based ? 0 : first_index_;
     wopt.write_markers = !opt_.no_markers;
+    wopt.holes = holes_;      // the output .poly describes the same domain
+    wopt.regions = regions_;
     std::vector<std::string> written;
     auto emit = [&](bool enabled, const char* ext, auto writer) {
       if (!enabled) return;

@@ -43,7 +43,7 @@ class SwitchString {
           o_.quality = true;
           const std::string_view num = number();
           if (!num.empty()) o_.min_angle = to_double(c, num);
-          planned(c, num, "quality mesh generation (minimum angle)");
+          planned(c, num, "quality mesh generation with a minimum angle");
           break;
         }
         case 'a': {
@@ -76,7 +76,7 @@ class SwitchString {
             throw UsageError{"switch -o must be followed by 2 (-o2: second-order, six-node triangles)"};
           ++i_;
           o_.order = 2;
-          planned(c, "2", "second-order (six-node) triangles");
+          planned(c, "2", "second-order, six-node triangles");
           break;
         }
         case 'Y':
@@ -86,7 +86,7 @@ class SwitchString {
         case 'u': o_.user_area = true; planned(c, {}, "user-defined triangle size constraint"); break;
         case 'D': o_.conforming_delaunay = true; planned(c, {}, "conforming Delaunay"); break;
         case 'v': o_.voronoi = true; planned(c, {}, "Voronoi diagram output"); break;
-        case 'g': o_.geomview = true; planned(c, {}, "OFF (Geomview) output"); break;
+        case 'g': o_.geomview = true; planned(c, {}, "OFF output for Geomview"); break;
         case 's': o_.split_segments = true; planned(c, {}, "segment splitting"); break;
         default:
           if (std::isdigit(static_cast<unsigned char>(c)) || c == '.')

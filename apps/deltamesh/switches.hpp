@@ -57,7 +57,7 @@ struct Options {
   bool voronoi = false;                       // -v
   bool geomview = false;                      // -g
   bool split_segments = false;                // -s
-  std::vector<std::string> unavailable;       // e.g. "-q30 (quality mesh generation)"
+  std::vector<std::string> unavailable;       // e.g. "-q30 (quality mesh generation with a minimum angle)"
   // Accepted for compatibility, no effect: -i -F (Triangle's algorithm
   // choices), -l (divide-and-conquer cuts), -X (exact arithmetic is always on).
 

@@ -69,6 +69,14 @@ struct TriangulateStats {
 // through it. Throws InputError (and IntersectingSegments under strict).
 Mesh triangulate(const Pslg& pslg, const TriangulateOptions& options = {}, TriangulateStats* stats = nullptr);
 
+// The end of Triangle's vertex-marker rule on a finished (compacted) mesh,
+// for vertices whose marker is still 0 (or that have none yet: the marker
+// and attribute arrays are extended with zeros to every vertex): a vertex on
+// a constrained edge with a nonzero marker takes it, else a vertex on the
+// boundary gets 1. triangulate() ends with it; code that adds vertices
+// afterwards (refinement) calls it again.
+void finish_vertex_markers(Mesh& mesh);
+
 // Rebuilds a mesh from a triangle list, as Triangle's -r reads FILE.node and
 // FILE.ele: points, markers and attributes from `nodes`, triangles as 0-based
 // vertex triples (either orientation), `num_attributes` attributes per

@@ -116,26 +116,6 @@ void carry_vertex_data(Mesh& mesh, const Pslg& pslg, bool use_segments) {
   }
 }
 
-// The last part of the marker rule, on the finished (compacted) mesh: a
-// vertex still marked 0 that lies on the boundary gets 1. Vertices added
-// after carry_vertex_data (refinement) start at 0.
-void mark_boundary_vertices(Mesh& mesh) {
-  std::vector<int>& markers = mesh.vertex_markers();
-  markers.resize(mesh.num_vertices(), 0);
-  const std::size_t na = mesh.num_vertex_attributes();
-  mesh.vertex_attributes().resize(mesh.num_vertices() * na, 0.0);
-  const std::size_t slots = mesh.num_triangle_slots();
-  for (TriId t = 0; t < slots; ++t) {
-    if (!mesh.is_real(t)) continue;
-    for (HalfEdgeId e = 3 * t; e < 3 * t + 3; ++e) {
-      const HalfEdgeId f = mesh.twin(e);
-      if (f != kNone && mesh.is_real(tri_of(f))) continue;
-      if (markers[mesh.origin(e)] == 0) markers[mesh.origin(e)] = 1;
-      if (markers[mesh.dest(e)] == 0) markers[mesh.dest(e)] = 1;
-    }
-  }
-}
-
 std::size_t count_constrained_edges(const Mesh& mesh) {
   std::size_t count = 0;
   if (!mesh.has_edge_flags()) return 0;
@@ -152,6 +132,37 @@ std::size_t count_constrained_edges(const Mesh& mesh) {
 }
 
 }  // namespace
+
+void finish_vertex_markers(Mesh& mesh) {
+  std::vector<int>& markers = mesh.vertex_markers();
+  markers.resize(mesh.num_vertices(), 0);
+  const std::size_t na = mesh.num_vertex_attributes();
+  mesh.vertex_attributes().resize(mesh.num_vertices() * na, 0.0);
+  const std::size_t slots = mesh.num_triangle_slots();
+  // A vertex on a segment with a nonzero marker (one added on a segment
+  // after carry_vertex_data, say) takes it ...
+  if (mesh.has_edge_markers()) {
+    for (TriId t = 0; t < slots; ++t) {
+      if (!mesh.is_real(t)) continue;
+      for (HalfEdgeId e = 3 * t; e < 3 * t + 3; ++e) {
+        const int m = mesh.edge_marker(e);
+        if (m == 0 || !mesh.is_constrained(e)) continue;
+        if (markers[mesh.origin(e)] == 0) markers[mesh.origin(e)] = m;
+        if (markers[mesh.dest(e)] == 0) markers[mesh.dest(e)] = m;
+      }
+    }
+  }
+  // ... and a vertex still at 0 on the boundary gets 1.
+  for (TriId t = 0; t < slots; ++t) {
+    if (!mesh.is_real(t)) continue;
+    for (HalfEdgeId e = 3 * t; e < 3 * t + 3; ++e) {
+      const HalfEdgeId f = mesh.twin(e);
+      if (f != kNone && mesh.is_real(tri_of(f))) continue;
+      if (markers[mesh.origin(e)] == 0) markers[mesh.origin(e)] = 1;
+      if (markers[mesh.dest(e)] == 0) markers[mesh.dest(e)] = 1;
+    }
+  }
+}
 
 Mesh triangulate(const Pslg& pslg, const TriangulateOptions& options, TriangulateStats* stats) {
   const auto t_start = Clock::now();
@@ -218,11 +229,11 @@ Mesh triangulate(const Pslg& pslg, const TriangulateOptions& options, Triangulat
   }
 
   // Refinement (a later issue) goes here: it works on the carved mesh, and
-  // vertices it adds get their markers from mark_boundary_vertices below.
+  // vertices it adds get their markers from finish_vertex_markers below.
 
   t = Clock::now();
   if (!mesh.compacted()) mesh.compact();
-  mark_boundary_vertices(mesh);
+  finish_vertex_markers(mesh);
   st.finish_seconds = seconds_since(t);
   st.vertices = mesh.num_vertices();
   st.triangles = mesh.num_triangles();
@@ -324,7 +335,7 @@ Mesh mesh_from_triangles(const Pslg& nodes, std::span<const VertexId> triangles,
     }
   }
   carry_vertex_data(mesh, nodes, true);
-  mark_boundary_vertices(mesh);
+  finish_vertex_markers(mesh);
   return mesh;
 }
 
