@@ -195,10 +195,18 @@ class Formats : public ::testing::Test {
   }
   // Runs a Python script (written to a file) with Debian's python3.
   Result py(const std::string& code, const std::vector<std::string>& args) {
-    const std::string script = path("check_" + std::to_string(++scripts_) + ".py");
+    std::string name = "check_";
+    name += std::to_string(++scripts_);
+    name += ".py";
+    const std::string script = path(name);
     std::ofstream(script) << code;
-    std::string cmd = std::string(kPython) + " " + quote(script);
-    for (const std::string& a : args) cmd += " " + quote(a);
+    std::string cmd = kPython;
+    cmd += ' ';
+    cmd += quote(script);
+    for (const std::string& a : args) {
+      cmd += ' ';
+      cmd += quote(a);
+    }
     return run(cmd);
   }
   static bool has(const std::vector<std::string>& lines, const std::string& line) {

@@ -108,7 +108,9 @@ TEST(Voronoi, DualGraphCountsAndGeometry) {
       const Point a = d.vertices[e.a], b = d.vertices[e.b];
       // Perpendicular to its Delaunay edge (both ends on the bisector).
       const double len = dist(a, b) * std::hypot(dx, dy);
-      if (len > 0.0) EXPECT_LE(std::fabs((b.x - a.x) * dx + (b.y - a.y) * dy), 1e-7 * len);
+      if (len > 0.0) {
+        EXPECT_LE(std::fabs((b.x - a.x) * dx + (b.y - a.y) * dy), 1e-7 * len);
+      }
       EXPECT_NEAR(dist(a, p), dist(a, q), 1e-9 * dist(a, p));
       EXPECT_NEAR(dist(b, p), dist(b, q), 1e-9 * dist(b, p));
     }
@@ -297,8 +299,12 @@ TEST(Voronoi, CellsDoNotCrossANarrowGap) {
     const Point s = m.point(c.site);
     for (const Point& p : c.ring) {
       if (p.y <= 0.2 + 1e-12) continue;
-      if (s.x <= 1.0) EXPECT_LE(p.x, 1.0 + 1e-12) << s.x << "," << s.y;
-      if (s.x >= 1.2) EXPECT_GE(p.x, 1.2 - 1e-12) << s.x << "," << s.y;
+      if (s.x <= 1.0) {
+        EXPECT_LE(p.x, 1.0 + 1e-12) << s.x << "," << s.y;
+      }
+      if (s.x >= 1.2) {
+        EXPECT_GE(p.x, 1.2 - 1e-12) << s.x << "," << s.y;
+      }
     }
   }
 }

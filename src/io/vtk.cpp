@@ -121,15 +121,14 @@ class Base64 {
   void feed(const void* data, std::size_t n) {
     const auto* p = static_cast<const unsigned char*>(data);
     std::size_t i = 0;
-    while (have_ != 0 && i < n) {  // complete a pending triple
-      carry_[have_++] = p[i++];
-      if (have_ == 3) {
-        encode(carry_);
-        have_ = 0;
-      }
+    if (have_ != 0) {  // complete a pending triple
+      while (have_ < 3 && i < n) carry_[have_++] = p[i++];
+      if (have_ < 3) return;
+      encode(carry_);
+      have_ = 0;
     }
     for (; i + 3 <= n; i += 3) encode(p + i);
-    while (i < n) carry_[have_++] = p[i++];
+    for (; i < n && have_ < 3; ++i) carry_[have_++] = p[i];
   }
   // Pads and emits what is pending (ends one base64 block).
   void finish() {
