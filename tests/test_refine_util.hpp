@@ -66,6 +66,14 @@ inline void expect_valid(const Mesh& mesh, bool convex) {
 // Every input segment (a, b) is still a chain of constrained edges from a to
 // b whose vertices lie on the segment (up to rounding of split points).
 inline bool segments_conform(const Mesh& mesh, const std::vector<std::pair<VertexId, VertexId>>& segs) {
+  // Constrained neighbours of every vertex, from all half-edges (a vertex
+  // where holes touch has two fans; a rotation would see only one).
+  std::vector<std::vector<VertexId>> adj(mesh.num_vertices());
+  for (HalfEdgeId e = 0; e < mesh.triangle_vertices().size(); ++e) {
+    if (!mesh.is_real(tri_of(e)) || !mesh.is_constrained(e)) continue;
+    adj[mesh.origin(e)].push_back(mesh.dest(e));
+    adj[mesh.dest(e)].push_back(mesh.origin(e));
+  }
   for (const auto& [a, b] : segs) {
     const Point& pa = mesh.point(a);
     const Point& pb = mesh.point(b);
@@ -75,23 +83,23 @@ inline bool segments_conform(const Mesh& mesh, const std::vector<std::pair<Verte
     for (std::size_t steps = 0; v != b; ++steps) {
       if (steps > mesh.num_vertices()) return false;
       VertexId next = kNone;
-      auto try_edge = [&](HalfEdgeId e, VertexId w_id) {
-        if (next != kNone || !mesh.is_constrained(e)) return;
+      double best = 2, best_dist = INFINITY;
+      for (VertexId w_id : adj[v]) {
         const Point& w = mesh.point(w_id);
         const double t = ((w.x - pa.x) * dx + (w.y - pa.y) * dy) / len2;
-        const double off = std::fabs((w.x - pa.x) * dy - (w.y - pa.y) * dx) / len2;
-        if (t > progress && off < 1e-9) next = w_id;
-      };
-      // Out-edges v -> w, and in-edges w -> v (a boundary segment may run
-      // against the mesh's half-edge orientation).
-      mesh.for_each_out_edge(v, [&](HalfEdgeId e) {
-        try_edge(e, mesh.dest(e));
-        try_edge(prev_edge(e), mesh.origin(prev_edge(e)));
-        return next == kNone;
-      });
+        // Distance from the line, against rounding at the coordinates' magnitude.
+        const double dist = std::fabs((w.x - pa.x) * dy - (w.y - pa.y) * dx) / std::sqrt(len2);
+        const double tol = 1e-9 * std::sqrt(len2) + 1e-13 * (std::fabs(w.x) + std::fabs(w.y) + 1e-300);
+        // Of the constrained neighbours ahead on the line, the one nearest
+        // to it (near a small input angle another segment runs close by).
+        if (t > progress && dist < tol && dist < best_dist) {
+          best = t;
+          best_dist = dist;
+          next = w_id;
+        }
+      }
       if (next == kNone) return false;
-      const Point& w = mesh.point(next);
-      progress = ((w.x - pa.x) * dx + (w.y - pa.y) * dy) / len2;
+      progress = best;
       v = next;
     }
   }

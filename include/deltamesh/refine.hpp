@@ -25,19 +25,34 @@ enum class SteinerRule {
   // it than the point that makes a triangle of exactly the angle bound with
   // it; the circumcentre when that is nearer. Fewer triangles (default).
   Offcenter,
-  // The circumcentre, exactly the seed's Figure 18 (Ruppert / Chew).
+  // The circumcentre: with EncroachmentRule::DiametralCircle and
+  // RefineOrder::WorstFirst this is exactly the seed's Figure 18 (Ruppert).
   Circumcenter,
 };
 
 // When a vertex encroaches upon a subsegment.
 enum class EncroachmentRule {
-  // Inside the diametral circle (the seed's R1): the segment subtends an
-  // angle > 90° at the vertex. Decided with an exact sign.
-  DiametralCircle,
-  // Inside the diametral lens (Shewchuk): the segment subtends an angle
-  // > max(90°, 180° - 2·min_angle) at the vertex. Fewer segment splits.
-  // Steiner points beyond a segment still split it.
+  // Inside the diametral lens (Shewchuk 2002): the segment subtends an angle
+  // > max(90°, 180° - 2·min_angle) at the vertex, i.e. the vertex would make
+  // a triangle below the bound with it. Steiner points beyond a segment
+  // still split it. Default: on the corpus it gives 5% (q30) to 20% (q33)
+  // fewer triangles than circles and leaves fewer triangles below the bound.
   DiametralLens,
+  // Inside the diametral circle (the seed's R1 exactly): the segment
+  // subtends an angle > 90° at the vertex. Decided with an exact sign.
+  DiametralCircle,
+};
+
+// The order in which bad triangles are split. Both use an O(1) bucketed
+// queue whose entries keep their three vertex ids (stale ones are skipped).
+enum class RefineOrder {
+  // Shortest edge first (buckets by the shortest edge's length, a third of
+  // an octave wide): refinement proceeds from small features outwards and
+  // grades better; 15-20% fewer triangles than worst-first on the corpus
+  // (default).
+  ShortestEdgeFirst,
+  // Worst quality first (buckets by the sine of the smallest angle).
+  WorstFirst,
 };
 
 // Which segments may receive Steiner points (Triangle's -Y / -YY).
@@ -76,7 +91,8 @@ struct RefineOptions {
   std::function<double(double x, double y)> max_edge_at;
 
   SteinerRule steiner = SteinerRule::Offcenter;
-  EncroachmentRule encroachment = EncroachmentRule::DiametralCircle;
+  EncroachmentRule encroachment = EncroachmentRule::DiametralLens;
+  RefineOrder order = RefineOrder::ShortestEdgeFirst;
   SegmentSplitting segment_splitting = SegmentSplitting::All;
   // -D: every interior edge, segments included, ends locally Delaunay, so the
   // mesh is Delaunay within each connected region (diametral circles are
@@ -109,6 +125,7 @@ struct RefineStats {
   std::size_t offcenters = 0;        // interior points at an off-centre rather than a circumcentre
   std::size_t rejected_points = 0;   // R2 points not inserted because they encroached segments
   std::size_t small_angle_skips = 0; // splits refused by the §3.6 rules (events, not triangles)
+  std::size_t failed_splits = 0;     // segment splits abandoned: the rounded split point did not fit
 
   // Triangles still below the angle bound when refinement ended, and why.
   std::size_t below_bound = 0;

@@ -81,7 +81,15 @@ QualityReport quality_report(const Mesh& mesh, const QualityOptions& opt, const 
       r.min_area = std::min(r.min_area, area), r.max_area = std::max(r.max_area, area);
       r.shortest_edge = std::min(r.shortest_edge, shortest), r.longest_edge = std::max(r.longest_edge, longest);
     }
-    if (opt.min_angle_deg > 0 && lo < opt.min_angle_deg) ++r.below_angle;
+    // Below the bound by the test refinement uses (sine of the smallest
+    // angle, from the cross product and the two longer edges), so both count alike.
+    if (opt.min_angle_deg > 0) {
+      const double s = std::sin(opt.min_angle_deg * std::numbers::pi / 180.0);
+      const double cross = (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
+      const double mn = std::min({l2[0], l2[1], l2[2]});
+      const double den = l2[0] * l2[1] * l2[2] / mn;
+      if (cross * cross < s * s * den) ++r.below_angle;
+    }
     double bound = opt.max_area;
     const double tb = mesh.triangle_area_bound(t);
     if (tb > 0 && (bound <= 0 || tb < bound)) bound = tb;

@@ -74,7 +74,17 @@ inline double dist2(const Point& a, const Point& b) {
   return dx * dx + dy * dy;
 }
 
-constexpr int kBuckets = 1024;
+constexpr int kBuckets = 2048;
+
+// Tuning, measured on the corpus (see the report in the refinement notes):
+// off-centres a little nearer than the bound's petal tip, so that new
+// triangles clear the bound after rounding; concentric shells only around
+// input vertices with a domain angle under 60° (midpoints elsewhere); the
+// mid-wedge small-angle rule for wedges under 10° (wider wedges are refined,
+// only the triangle holding the input angle is left).
+constexpr double kOffcentreShrink = 0.98;
+constexpr double kShellApexAngle = 60.0;
+constexpr double kWedgeAngle = 10.0;
 
 // Why a bad triangle was left alone.
 enum class Reason : std::uint8_t { None, SmallAngle, Protected, Precision, Budget };
@@ -147,9 +157,16 @@ struct Eval {
   double shortest2 = 0;   // squared length of the shortest edge
 };
 
+// A subsegment to split later: its vertices and a half-edge that may still be it.
+struct SubsegmentRef {
+  VertexId a, b;
+  HalfEdgeId hint;
+};
+
 // One edge of a cavity's boundary, copied before the cavity is rewritten.
 struct BoundaryEdge {
   VertexId a, b;        // a -> b, counter-clockwise around the cavity
+  HalfEdgeId inner;     // the half-edge a -> b inside the cavity (valid until it is rewritten)
   HalfEdgeId outer;     // the half-edge b -> a outside the cavity, or kNone
   std::uint8_t flags;
   int marker;
@@ -218,15 +235,16 @@ class Refiner {
     Reason reason = Reason::None;
     Point c;
     bool offcenter = false;
-    std::vector<std::pair<VertexId, VertexId>> segments;
+    std::vector<SubsegmentRef> segments;
   };
   void decide(TriId t, Decision& d);
   void decide_segments(const std::vector<HalfEdgeId>& encroached, const Eval& ev, Decision& d);
   VertexId new_vertex(const Point& p, std::uint32_t seg, int marker);
   void insert_interior(const Point& c, TriId seed);
-  void split_segment(HalfEdgeId e);
+  bool split_segment(HalfEdgeId e);
   TriId take_slot(std::size_t i, std::size_t fan, VertexId v);
   bool budget_left();
+  HalfEdgeId edge(VertexId a, VertexId b, HalfEdgeId hint) const;
   void finish();
 
   Mesh& m_;
@@ -246,8 +264,12 @@ class Refiner {
   bool lens_ = false;
   bool has_area_bounds_ = false;  // refine for the mesh's per-triangle bounds
   bool carry_bounds_ = false;     // the mesh has per-triangle bounds: keep them on new triangles
+  bool shortest_first_ = true;    // queue order
   bool has_markers_ = false;
   double precision2_ = 0;       // squared shortest edge below which nothing is split
+  double shell_cos_ = -2;       // input vertices whose smallest segment angle has a larger cosine get shells
+  double small_cos2_ = 0.25;    // cos^2 of the largest input angle the small-angle rule treats as small
+  std::vector<float> apex_cos_; // per input vertex: cosine of its smallest angle between segments (-2: none)
   std::size_t budget_ = kUnlimited;
   std::size_t n_input_ = 0;
 
@@ -259,7 +281,7 @@ class Refiner {
   std::vector<std::uint32_t> seg_of_;        // per Steiner vertex on a segment: its segment
 
   BadQueue queue_;
-  std::vector<std::pair<VertexId, VertexId>> encroached_;
+  std::vector<SubsegmentRef> encroached_;
 
   // Scratch, reused by every insertion.
   std::vector<TriId> cav_;
@@ -289,7 +311,10 @@ void Refiner::setup() {
   // The off-centre sits where the shortest edge pq subtends the bound
   // angle, i.e. at distance |pq|/2 · cot(theta/2) from pq's midpoint; a
   // little nearer, so that the new triangle clears the bound after rounding.
-  off_factor_ = theta > 0 ? 0.5 * 0.98 / std::tan(rad / 2) : 0.0;
+  off_factor_ = theta > 0 ? 0.5 * kOffcentreShrink / std::tan(rad / 2) : 0.0;
+  shell_cos_ = std::cos(kShellApexAngle * std::numbers::pi / 180);
+  small_cos2_ = std::cos(kWedgeAngle * std::numbers::pi / 180) * std::cos(kWedgeAngle * std::numbers::pi / 180);
+  shortest_first_ = opt_.order == RefineOrder::ShortestEdgeFirst;
   lens_ = opt_.encroachment == EncroachmentRule::DiametralLens && !opt_.conforming_delaunay;
   if (lens_) {
     const double phi = std::max(90.0, 180.0 - 2.0 * theta) * std::numbers::pi / 180.0;
@@ -314,8 +339,13 @@ void Refiner::setup() {
     }
     lox = std::min(lox, p.x), hix = std::max(hix, p.x), loy = std::min(loy, p.y), hiy = std::max(hiy, p.y);
   }
-  const double diag2 = (hix - lox) * (hix - lox) + (hiy - loy) * (hiy - loy);
-  precision2_ = diag2 * 0x1p-90;  // shortest edges below 2^-45 of the diameter are not split
+  // Edges shorter than 2^-36 of the coordinates' magnitude (or 2^-45 of the
+  // diameter) are not split: below that, rounded split points bend segments
+  // visibly and circumcentres lose their meaning.
+  const double mag = std::max({std::fabs(lox), std::fabs(hix), std::fabs(loy), std::fabs(hiy)});
+  const double diag = std::sqrt((hix - lox) * (hix - lox) + (hiy - loy) * (hiy - loy));
+  const double floor_len = std::max(mag * 0x1p-36, diag * 0x1p-45);
+  precision2_ = floor_len * floor_len;
 
   // Every boundary edge is a segment.
   const std::size_t ne = tv_.size();
@@ -342,26 +372,49 @@ void Refiner::setup() {
       adj_[fill[b]++] = {a, s};
     }
   }
-  // Small-angle apexes: two segments at an input vertex less than 60° apart.
+  // Small-angle apexes: two segments at an input vertex that bound a sector
+  // of the domain narrower than 60° (the angle inside a hole or outside the
+  // domain does not count). A sector runs counter-clockwise from a
+  // constrained out-edge through unconstrained edges to the next
+  // constrained edge; its angle is the sum of the triangle corners in it.
   seg_small_.assign(segs_.size(), 0);
-  for (VertexId v = 0; v < n_input_; ++v) {
-    const std::uint32_t lo = adj_start_[v], hi = adj_start_[v + 1];
-    for (std::uint32_t i = lo; i < hi; ++i)
-      for (std::uint32_t j = i + 1; j < hi; ++j) {
-        const Point& p = pts_[v];
-        const Point& a = pts_[adj_[i].first];
-        const Point& b = pts_[adj_[j].first];
-        const double ux = a.x - p.x, uy = a.y - p.y, wx = b.x - p.x, wy = b.y - p.y;
-        const double dot = ux * wx + uy * wy;
-        // angle < 60°  <=>  cos > 1/2
-        if (dot > 0 && 4 * dot * dot > (ux * ux + uy * uy) * (wx * wx + wy * wy)) {
-          for (std::uint32_t k : {i, j}) {
-            const std::uint32_t s = adj_[k].second;
-            seg_small_[s] |= segs_[s][0] == v ? 1 : 2;
-          }
-        }
+  apex_cos_.assign(n_input_, -2.0f);
+  for (HalfEdgeId e0 = 0; e0 < ne; ++e0) {
+    const VertexId v = tv_[e0];
+    if (v >= n_input_ || !(fl_[e0] & kConstrained)) continue;
+    const Point& A = pts_[v];
+    double angle = 0;
+    HalfEdgeId g = e0;
+    bool closed = false;
+    for (std::size_t guard = 0; guard < 1u << 20; ++guard) {
+      const HalfEdgeId p = prev_edge(g);  // y -> v, the corner's other edge
+      const Point& X = pts_[tv_[next_edge(g)]];
+      const Point& Y = pts_[tv_[p]];
+      const double ux = X.x - A.x, uy = X.y - A.y, wx = Y.x - A.x, wy = Y.y - A.y;
+      angle += std::atan2(std::fabs(ux * wy - uy * wx), ux * wx + uy * wy);
+      if (fl_[p] & kConstrained) {
+        closed = true;
+        g = p;
+        break;
       }
+      g = tw_[p];
+      if (g == kNone || g == e0) break;
+    }
+    if (!closed) continue;
+    const float c = static_cast<float>(std::cos(std::min(angle, std::numbers::pi)));
+    apex_cos_[v] = std::max(apex_cos_[v], c);
+    if (angle < std::numbers::pi / 3) {
+      const std::uint32_t s1 = input_segment(v, tv_[next_edge(e0)]);
+      const std::uint32_t s2 = input_segment(v, tv_[g]);
+      for (std::uint32_t sg : {s1, s2})
+        if (sg != kNone) seg_small_[sg] |= segs_[sg][0] == v ? 1 : 2;
+    }
   }
+  // Out-edges from scratch: any out-edge for an interior vertex, the
+  // boundary one (most clockwise) for a boundary vertex, as compact() sets them.
+  std::fill(ve_.begin(), ve_.end(), kNone);
+  for (HalfEdgeId e = 0; e < ne; ++e)
+    if (ve_[tv_[e]] == kNone || tw_[e] == kNone) ve_[tv_[e]] = e;
   seg_of_.assign(n_input_, kNone);
   if (!m_.vertex_markers().empty()) m_.vertex_markers().resize(n_input_, 0);
   reserve_for_area_bounds();
@@ -455,7 +508,16 @@ void Refiner::consider(TriId t) {
   if (!ev.skinny && !ev.large) return;
   const QueueEntry q{t, tv_[3 * t], tv_[3 * t + 1], tv_[3 * t + 2]};
   if (ev.skinny) {
-    int key = static_cast<int>(ev.sin2 / sin2_bound_ * kBuckets);
+    int key;
+    if (shortest_first_) {
+      // Three buckets per octave of the squared shortest edge (exponent
+      // from frexp: no logarithm), shortest first.
+      int ex;
+      const double f = std::frexp(ev.shortest2, &ex);  // shortest2 = f 2^ex, f in [0.5, 1)
+      key = 3 * (ex + 340) + (f < 0.63 ? 0 : (f < 0.794 ? 1 : 2));
+    } else {
+      key = static_cast<int>(ev.sin2 / sin2_bound_ * kBuckets);  // worst first
+    }
     key = std::clamp(key, 0, kBuckets - 1);
     queue_.push_skinny(key, q);
   } else {
@@ -487,6 +549,19 @@ void Refiner::apexes(VertexId v, std::array<std::pair<VertexId, std::uint32_t>, 
 // Miller-Pav-Walkington: the shortest edge joins two different segments
 // that meet at an apex at an angle below 60°.
 bool Refiner::faces_small_angle(TriId t, const Eval& ev) const {
+  // The triangle holds an input angle below the bound between two segments:
+  // no split can remove that angle.
+  for (int i = 0; i < 3; ++i) {
+    const HalfEdgeId f = 3 * t + i;
+    const VertexId v = tv_[f];
+    if (v >= n_input_ || !(fl_[f] & kConstrained) || !(fl_[prev_edge(f)] & kConstrained)) continue;
+    const Point& A = pts_[v];
+    const Point& B = pts_[tv_[next_edge(f)]];
+    const Point& C = pts_[tv_[prev_edge(f)]];
+    const double ux = B.x - A.x, uy = B.y - A.y, wx = C.x - A.x, wy = C.y - A.y;
+    const double cross = ux * wy - uy * wx, l = (ux * ux + uy * uy) * (wx * wx + wy * wy);
+    if (ux * wx + uy * wy > 0 && cross * cross < sin2_bound_ * l) return true;
+  }
   const HalfEdgeId e = 3 * t + ev.shortest;
   const VertexId p = tv_[e], q = tv_[next_edge(e)];
   std::array<std::pair<VertexId, std::uint32_t>, 2> tp, tq;
@@ -507,7 +582,7 @@ bool Refiner::faces_small_angle(TriId t, const Eval& ev) const {
       const double ux = pts_[op].x - A.x, uy = pts_[op].y - A.y;
       const double wx = pts_[oq].x - A.x, wy = pts_[oq].y - A.y;
       const double dot = ux * wx + uy * wy;
-      if (!(dot > 0 && 4 * dot * dot > (ux * ux + uy * uy) * (wx * wx + wy * wy))) continue;
+      if (!(dot > 0 && dot * dot > small_cos2_ * (ux * ux + uy * uy) * (wx * wx + wy * wy))) continue;
       // ... and the triangle lies in the wedge between them: its third
       // vertex is inside the (convex, < 60°) cone at the apex. A triangle
       // beyond the wedge's mouth is skinny for other reasons and is split.
@@ -556,7 +631,7 @@ Point Refiner::split_point(VertexId a, VertexId b) const {
   const Point& A = pts_[a];
   const Point& B = pts_[b];
   const bool ain = a < n_input_, bin = b < n_input_;
-  if (opt_.small_angle_protection && ain != bin) {
+  if (opt_.small_angle_protection && ain != bin && apex_cos_[ain ? a : b] > shell_cos_) {
     const Point& apex = ain ? A : B;
     const Point& other = ain ? B : A;
     const double len = std::sqrt(dist2(apex, other));
@@ -648,6 +723,7 @@ void Refiner::record_boundary(HalfEdgeId e) {
   BoundaryEdge b;
   b.a = tv_[e];
   b.b = tv_[next_edge(e)];
+  b.inner = e;
   b.outer = tw_[e];
   b.flags = fl_[e];
   b.marker = has_markers_ ? mk_[e] : 0;
@@ -779,7 +855,7 @@ void Refiner::check_encroached(HalfEdgeId e, VertexId apex) {
   const VertexId a = tv_[e], b = tv_[next_edge(e)];
   if (!encroaches(pts_[a], pts_[b], pts_[apex])) return;
   if (!splittable(e)) return;
-  encroached_.push_back({a, b});
+  encroached_.push_back({a, b, e});
 }
 
 // ===========================================================================
@@ -832,9 +908,7 @@ void Refiner::decide(TriId t, Decision& d) {
   bool protected_only = false;
   for (const BoundaryEdge& b : bnd_) {
     if (!(b.flags & kConstrained) || !encroaches(pts_[b.a], pts_[b.b], d.c)) continue;
-    // Half-edge of the segment: inside the cavity (its slot is still intact).
-    const HalfEdgeId e = b.outer != kNone ? tw_[b.outer] : m_.find_edge(b.a, b.b);
-    if (e == kNone) continue;
+    const HalfEdgeId e = b.inner;  // the cavity is still intact
     if (!splittable(e)) {
       protected_only = true;
       continue;
@@ -860,7 +934,7 @@ void Refiner::decide_segments(const std::vector<HalfEdgeId>& enc, const Eval& ev
       if (why == Reason::None) why = Reason::SmallAngle;
       continue;
     }
-    d.segments.push_back({tv_[e], tv_[next_edge(e)]});
+    d.segments.push_back({tv_[e], tv_[next_edge(e)], e});
   }
   if (d.segments.empty()) {
     d.kind = Decision::Skip;
@@ -969,7 +1043,7 @@ void Refiner::insert_interior(const Point& c, TriId seed) {
 }
 
 // Splits the constrained edge e = (a -> b) at its split point.
-void Refiner::split_segment(HalfEdgeId e) {
+bool Refiner::split_segment(HalfEdgeId e) {
   const VertexId a = tv_[e], b = tv_[next_edge(e)];
   const Point mp = split_point(a, b);
   const int marker = has_markers_ ? mk_[e] : 0;
@@ -978,8 +1052,8 @@ void Refiner::split_segment(HalfEdgeId e) {
   if (!split_cavity(e, mp)) {
     // The split point is off the segment's line by rounding and some
     // neighbouring triangle is too flat to take it: leave this segment.
-    ++st_.small_angle_skips;  // counted with the refusals; it is rare
-    return;
+    ++st_.failed_splits;
+    return false;
   }
   const std::uint32_t seg = a >= n_input_ ? seg_of_[a] : (b >= n_input_ ? seg_of_[b] : input_segment(a, b));
   int vmarker = marker != 0 ? marker : (boundary ? 1 : 0);
@@ -1069,6 +1143,18 @@ void Refiner::split_segment(HalfEdgeId e) {
     check_encroached(ma2, tv_[prev_edge(ma2)]);
     check_encroached(bm2, tv_[prev_edge(bm2)]);
   }
+  return true;
+}
+
+// The half-edge a -> b: the hint if it still is one, else a rotation around
+// a, else the twin of b -> a (a vertex where holes touch has two fans and
+// the rotation from its out-edge sees only one).
+HalfEdgeId Refiner::edge(VertexId a, VertexId b, HalfEdgeId hint) const {
+  if (hint < tv_.size() && tv_[hint] == a && tv_[next_edge(hint)] == b) return hint;
+  HalfEdgeId e = m_.find_edge(a, b);
+  if (e != kNone) return e;
+  e = m_.find_edge(b, a);
+  return e != kNone ? tw_[e] : kNone;
 }
 
 bool Refiner::budget_left() {
@@ -1089,7 +1175,7 @@ void Refiner::run() {
   const std::size_t nt = tv_.size() / 3;
   for (HalfEdgeId e = 0; e < tv_.size(); ++e)
     if ((fl_[e] & kConstrained) && (tw_[e] == kNone || tw_[e] > e) && encroached(e) && splittable(e))
-      encroached_.push_back({tv_[e], tv_[next_edge(e)]});
+      encroached_.push_back({tv_[e], tv_[next_edge(e)], e});
   for (TriId t = 0; t < nt; ++t) consider(t);
   const bool timed = opt_.time_limit_seconds > 0;
   while (!stopped_) {
@@ -1099,9 +1185,9 @@ void Refiner::run() {
       break;
     }
     if (!encroached_.empty()) {
-      const auto [a, b] = encroached_.back();
+      const SubsegmentRef r = encroached_.back();
       encroached_.pop_back();
-      const HalfEdgeId e = m_.find_edge(a, b);
+      const HalfEdgeId e = edge(r.a, r.b, r.hint);
       if (e == kNone || !(fl_[e] & kConstrained) || !encroached(e) || !splittable(e)) continue;
       if (!budget_left()) break;
       split_segment(e);
@@ -1123,13 +1209,16 @@ void Refiner::run() {
         break;
       case Decision::Split: {
         ++st_.rejected_points;
-        for (const auto& [a, b] : decision_.segments) {
-          const HalfEdgeId e = m_.find_edge(a, b);
+        bool split = false;
+        for (const SubsegmentRef& r : decision_.segments) {
+          const HalfEdgeId e = edge(r.a, r.b, r.hint);
           if (e == kNone) continue;
           if (!budget_left()) break;
-          split_segment(e);
+          split |= split_segment(e);
         }
-        if (alive(q)) consider(q.t);
+        // Requeue the triangle for another look, unless no split could be
+        // made (then the same decision would come back forever).
+        if (split && alive(q)) consider(q.t);
         break;
       }
     }
