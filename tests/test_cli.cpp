@@ -174,6 +174,22 @@ TEST_F(Cli, ConvexHullOnPointSetWritesPoly) {
   EXPECT_EQ(poly[1][0], "4");  // four hull segments
 }
 
+TEST_F(Cli, VoronoiOffAndOutputByExtension) {
+  data("points.node");
+  Result r = run("-vg --output=points.msh --output points.vtu points.node");
+  ASSERT_EQ(r.code, 0) << r.err;
+  for (const char* f : {"points.1.v.node", "points.1.v.edge", "points.1.off", "points.msh", "points.vtu"})
+    EXPECT_TRUE(exists(f)) << f;
+  const auto vnode = table(path("points.1.v.node"));
+  EXPECT_EQ(vnode[0][0], "6");  // one Voronoi vertex per triangle
+  const auto vedge = table(path("points.1.v.edge"));
+  EXPECT_EQ(vedge[0][0], "11");  // one Voronoi edge per Delaunay edge: V + T - 1
+  EXPECT_EQ(slurp(path("points.1.off")).rfind("OFF", 0), 0u);
+  r = run("--output=points.xyz points.node");
+  EXPECT_EQ(r.code, 1);
+  EXPECT_CONTAINS(r.err, "points.xyz");
+}
+
 // ---------------------------------------------------------------------------
 // -p and the domain switches
 

@@ -9,8 +9,10 @@
 #include <vector>
 
 #include "deltamesh/deltamesh.hpp"
+#include "deltamesh/formats.hpp"
 #include "deltamesh/switches.hpp"
 #include "deltamesh/triangulate.hpp"
+#include "deltamesh/voronoi.hpp"
 
 namespace dm = deltamesh;
 using namespace deltamesh::cli;
@@ -23,6 +25,10 @@ struct Phase {
   std::string name;
   double seconds;
 };
+
+std::string plural(std::size_t n, const char* one, const char* many) {
+  return std::to_string(n) + " " + (n == 1 ? one : many);
+}
 
 bool ends_with(const std::string& s, const std::string& suffix) {
   return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
@@ -142,7 +148,7 @@ class Run {
       } else {
         check_summary_ = report.summary();
         if (stats.segment_check.segments_checked)
-          check_summary_ += ", " + std::to_string(stats.segment_check.segments_checked) + " segments present";
+          check_summary_ += ", " + plural(stats.segment_check.segments_checked, "segment", "segments") + " present";
       }
     }
 
@@ -168,6 +174,22 @@ class Run {
     emit(write_poly, ".poly", [](auto& m, auto& p, auto& w) { dm::write_poly(m, p, w); });
     emit(opt_.edges, ".edge", [](auto& m, auto& p, auto& w) { dm::write_edge(m, p, w); });
     emit(opt_.neighbors, ".neigh", [](auto& m, auto& p, auto& w) { dm::write_neigh(m, p, w); });
+    emit(opt_.geomview, ".off", [](auto& m, auto& p, auto&) { dm::write_off(m, p); });
+    if (opt_.voronoi) {
+      const dm::VoronoiDiagram vd = dm::voronoi_diagram(mesh);
+      dm::write_voronoi_node(vd, out_base + ".v.node", wopt.first_index);
+      written.push_back(out_base + ".v.node");
+      dm::write_voronoi_edge(vd, out_base + ".v.edge", wopt.first_index);
+      written.push_back(out_base + ".v.edge");
+    }
+    for (const std::string& path : opt_.outputs) {
+      dm::OutputOptions oopt;
+      oopt.first_index = wopt.first_index;
+      oopt.write_markers = wopt.write_markers;
+      oopt.svg.title = opt_.input;
+      dm::write_output(mesh, path, oopt);
+      written.push_back(path);
+    }
     if (opt_.svg_path) {
       dm::SvgOptions sopt;
       sopt.title = opt_.input;
@@ -233,10 +255,10 @@ class Run {
     if (opt_.refine) {
       std::printf("Mesh read: %zu vertices, %zu triangles\n", mesh.num_vertices(), mesh.num_triangles());
     } else if (opt_.poly) {
-      std::printf("Constrained Delaunay triangulation: %zu input vertices, %zu segments", st.input_vertices,
-                  st.input_segments);
-      if (st.input_holes) std::printf(", %zu holes", st.input_holes);
-      std::printf(" -> %zu triangles\n", mesh.num_triangles());
+      std::printf("Constrained Delaunay triangulation: %s, %s", plural(st.input_vertices, "input vertex", "input vertices").c_str(),
+                  plural(st.input_segments, "segment", "segments").c_str());
+      if (st.input_holes) std::printf(", %s", plural(st.input_holes, "hole", "holes").c_str());
+      std::printf(" -> %s\n", plural(mesh.num_triangles(), "triangle", "triangles").c_str());
     } else {
       std::printf("Delaunay triangulation: %zu input vertices", st.input_vertices);
       if (st.duplicate_vertices) std::printf(" (%zu duplicates merged)", st.duplicate_vertices);

@@ -1,5 +1,7 @@
 #include "deltamesh/switches.hpp"
 
+#include "deltamesh/formats.hpp"
+
 #include <cctype>
 #include <charconv>
 #include <cmath>
@@ -85,8 +87,8 @@ class SwitchString {
           break;
         case 'u': o_.user_area = true; planned(c, {}, "user-defined triangle size constraint"); break;
         case 'D': o_.conforming_delaunay = true; planned(c, {}, "conforming Delaunay"); break;
-        case 'v': o_.voronoi = true; planned(c, {}, "Voronoi diagram output"); break;
-        case 'g': o_.geomview = true; planned(c, {}, "OFF output for Geomview"); break;
+        case 'v': o_.voronoi = true; break;
+        case 'g': o_.geomview = true; break;
         case 's': o_.split_segments = true; planned(c, {}, "segment splitting"); break;
         default:
           if (std::isdigit(static_cast<unsigned char>(c)) || c == '.')
@@ -145,6 +147,13 @@ Options parse_arguments(const std::vector<std::string>& args) {
       const std::string name = a.substr(0, a.find('='));
       if (name == "--svg") {
         o.svg_path = value(name);
+      } else if (name == "--output") {
+        const std::string v = value(name);
+        if (!output_format_for(v))
+          throw UsageError{"--output " + v +
+                           ": cannot tell the format from the extension (known: .msh .vtu .vtk .svg .geojson .json "
+                           ".off .node .ele .edge .neigh .poly)"};
+        o.outputs.push_back(v);
       } else if (name == "--cdt") {
         const std::string v = value(name);
         const std::optional<CdtMethod> m = v == "fast"     ? std::optional(CdtMethod::Fast)
@@ -221,10 +230,12 @@ Switches (Triangle's, combinable as one string, e.g. -pczV):
   -C  check the mesh (topology, orientation, Delaunay)        --check
   -Q  quiet: print nothing unless there is an error           --quiet
   -V  verbose: counts and timings per phase                   --verbose
+  -v  also write the Voronoi diagram (dual graph): FILE.1.v.node, FILE.1.v.edge
+  -g  also write FILE.1.off (Geomview's OFF format)
   -h  this help                                               --help
   -i -F -l -X are accepted and have no effect.
 Not available yet (parsed, then refused): -q[angle] -a[area] -u -D -S[n] -Y
--o2 -s -v -g.
+-o2 -s.
 
 Long options:
   --cdt=METHOD     segment insertion: fast (default), ct (flips, not always
@@ -234,6 +245,9 @@ Long options:
                    evenodd (keep odd nesting depth; no hole points needed)
   --strict         crossing segments are an error instead of being split
   --svg PATH       write an SVG picture of the mesh
+  --output PATH    also write the mesh to PATH, in the format its extension
+                   names: .msh (Gmsh) .vtu .vtk (VTK) .svg .geojson .off, or a
+                   Triangle format (repeatable)
   --version        print the version
 
 Examples:

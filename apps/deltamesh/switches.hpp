@@ -39,6 +39,8 @@ struct Options {
   bool edges = false;                // -e
   bool neighbors = false;            // -n
   bool no_markers = false;           // -B
+  bool voronoi = false;              // -v  FILE.1.v.node, FILE.1.v.edge
+  bool geomview = false;             // -g  FILE.1.off
   bool help = false;                 // -h / --help
 
   // Triangle switches that are parsed (numbers included) but whose feature
@@ -54,8 +56,6 @@ struct Options {
   int order = 1;                              // -o2
   int no_boundary_steiner = 0;                // -Y, -YY
   bool conforming_delaunay = false;           // -D
-  bool voronoi = false;                       // -v
-  bool geomview = false;                      // -g
   bool split_segments = false;                // -s
   std::vector<std::string> unavailable;       // e.g. "-q30 (quality mesh generation with a minimum angle)"
   // Accepted for compatibility, no effect: -i -F (Triangle's algorithm
@@ -67,6 +67,7 @@ struct Options {
   bool strict = false;                        // --strict
   bool version = false;
   std::optional<std::string> svg_path;
+  std::vector<std::string> outputs;  // --output PATH (format from the extension)
   std::string input;  // the FILE argument as given
 };
 
