@@ -14,6 +14,7 @@
 #include "deltamesh/quality.hpp"
 #include "deltamesh/refine.hpp"
 #include "deltamesh/svg.hpp"
+#include "deltamesh/triangulate.hpp"
 #include "deltamesh/validate.hpp"
 #include "test_refine_util.hpp"
 
@@ -441,4 +442,42 @@ TEST(Quality, ReportTextAndJson) {
   EXPECT_EQ(j.back(), '}');
   EXPECT_NE(j.find("\"below_reasons\""), std::string::npos);
   EXPECT_NE(j.find("\"triangles\":" + std::to_string(rep.triangles)), std::string::npos);
+}
+
+TEST(Refine, ThroughTheTriangulatePipeline) {
+  // The unit square with a square hole, -pq30a0.001 through triangulate().
+  dm::Pslg g;
+  g.points = {{0, 0}, {1, 0}, {1, 1}, {0, 1}, {0.4, 0.4}, {0.6, 0.4}, {0.6, 0.6}, {0.4, 0.6}};
+  for (dm::VertexId i = 0; i < 4; ++i) {
+    g.segments.push_back({i, (i + 1) % 4, 1});
+    g.segments.push_back({4 + i, 4 + (i + 1) % 4, 2});
+  }
+  g.holes.push_back({0.5, 0.5});
+  dm::TriangulateOptions topt;
+  topt.refine = opts([](dm::RefineOptions& o) {
+    o.min_angle_deg = 30;
+    o.max_area = 1e-3;
+  });
+  dm::TriangulateStats tst;
+  const dm::Mesh mesh = dm::triangulate(g, topt, &tst);
+  expect_valid(mesh, false);
+  EXPECT_TRUE(tst.refine.complete);
+  EXPECT_GT(tst.refine.steiner_points, 500u);
+  EXPECT_EQ(tst.vertices, mesh.num_vertices());
+  EXPECT_GE(min_angle_deg(mesh), 30.0);
+  ASSERT_EQ(mesh.vertex_markers().size(), mesh.num_vertices());
+  // Steiner points on the hole's segments carry its marker 2, inside 0.
+  for (dm::VertexId v = 8; v < mesh.num_vertices(); ++v) {
+    const dm::Point p = mesh.point(v);
+    const bool inner = std::fabs(p.x - 0.4) < 1e-12 || std::fabs(p.x - 0.6) < 1e-12 || std::fabs(p.y - 0.4) < 1e-12 ||
+                       std::fabs(p.y - 0.6) < 1e-12;
+    const bool outer = p.x == 0 || p.x == 1 || p.y == 0 || p.y == 1;
+    if (inner && p.x >= 0.4 - 1e-12 && p.x <= 0.6 + 1e-12 && p.y >= 0.4 - 1e-12 && p.y <= 0.6 + 1e-12) {
+      EXPECT_EQ(mesh.vertex_markers()[v], 2);
+    } else if (outer) {
+      EXPECT_EQ(mesh.vertex_markers()[v], 1);
+    } else {
+      EXPECT_EQ(mesh.vertex_markers()[v], 0);
+    }
+  }
 }

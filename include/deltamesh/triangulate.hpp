@@ -6,6 +6,7 @@
 //         --(vertex markers and attributes per Triangle's rules)--> Mesh
 #pragma once
 #include <cstddef>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -15,6 +16,7 @@
 #include "deltamesh/domain.hpp"
 #include "deltamesh/mesh.hpp"
 #include "deltamesh/pslg.hpp"
+#include "deltamesh/refine.hpp"
 #include "deltamesh/validate.hpp"
 
 namespace deltamesh {
@@ -33,7 +35,11 @@ struct TriangulateOptions {
   // after carving, segments whose both sides were removed are gone, so this
   // is where their presence is checked (-C). Result in stats.segment_check.
   bool check_segments = false;
-  // Refinement options (-q -a -S ...) will live here.
+  // Quality refinement of the carved mesh (-q -a -u -S -Y -D, see
+  // refine.hpp); none when empty. Triangles carry the regional area bounds
+  // of -a without a number (domain.regional_area_bounds), which refinement
+  // honours unless refine->use_triangle_area_bounds is false.
+  std::optional<RefineOptions> refine;
 };
 
 struct TriangulateStats {
@@ -52,6 +58,8 @@ struct TriangulateStats {
   double check_seconds = 0.0;          // ... its time
   double triangulate_seconds = 0.0;    // Delaunay or constrained triangulation
   double domain_seconds = 0.0;
+  RefineStats refine;                  // with options.refine
+  double refine_seconds = 0.0;
   double finish_seconds = 0.0;         // markers and attributes
   double total_seconds = 0.0;
   std::vector<std::string> warnings;   // ignored hole points, zero-length segments, empty domain, ...

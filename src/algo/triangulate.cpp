@@ -228,8 +228,13 @@ Mesh triangulate(const Pslg& pslg, const TriangulateOptions& options, Triangulat
           "are the segments closed around the region, or is -c needed?)");
   }
 
-  // Refinement (a later issue) goes here: it works on the carved mesh, and
-  // vertices it adds get their markers from finish_vertex_markers below.
+  // Refinement works on the carved mesh; vertices it adds get their markers
+  // from finish_vertex_markers below.
+  if (options.refine && mesh.num_triangles() > 0) {
+    t = Clock::now();
+    st.refine = refine(mesh, *options.refine);
+    st.refine_seconds = seconds_since(t);
+  }
 
   t = Clock::now();
   if (!mesh.compacted()) mesh.compact();
