@@ -12,6 +12,8 @@
 //    depth is kept.
 //  - Region seeds: the last seed lying in a region gives it its attribute and
 //    area bound, which is what Triangle's successive floods amount to.
+// The common case (Holes, no region seeds) skips the labels: one flood from
+// the exterior and the hole points visits only the triangles removed.
 #include "deltamesh/domain.hpp"
 
 #include <chrono>
@@ -69,31 +71,44 @@ HalfEdgeId hull_half_edge(const Mesh& mesh, TriId ghost) {
   return kNone;
 }
 
-// The region a point selects, or kNoRegion when it lies outside the hull, on
-// a vertex or on a segment. `hint` carries the last located triangle.
-std::uint32_t region_of_point(const Mesh& mesh, const Regions& regions, const Point& p, TriId& hint) {
+// The real triangle whose segment-bounded region a point selects, or kNone
+// when the point lies outside the hull, on a vertex or on a segment. `hint`
+// carries the last located triangle.
+TriId seed_triangle(const Mesh& mesh, const Point& p, TriId& hint) {
+  if (mesh.num_triangles() == 0) return kNone;
   const Location loc = mesh.locate(p, hint);
   switch (loc.kind) {
     case Location::Kind::InTriangle:
       hint = loc.tri;
-      return regions.label[loc.tri];
+      return loc.tri;
     case Location::Kind::OnEdge: {
       hint = loc.tri;
-      if (mesh.is_constrained(loc.edge)) return kNoRegion;
+      if (mesh.is_constrained(loc.edge)) return kNone;
       // Both sides of an unconstrained edge are one region (or the far side
       // is outside the hull).
       const TriId t = tri_of(loc.edge);
-      if (mesh.is_real(t)) return regions.label[t];
+      if (mesh.is_real(t)) return t;
       const HalfEdgeId f = mesh.twin(loc.edge);
-      return f != kNone && mesh.is_real(tri_of(f)) ? regions.label[tri_of(f)] : kNoRegion;
+      return f != kNone && mesh.is_real(tri_of(f)) ? tri_of(f) : kNone;
     }
     case Location::Kind::OnVertex:
       hint = loc.tri;
-      return kNoRegion;
+      return kNone;
     case Location::Kind::Outside:
-      return kNoRegion;
+      return kNone;
   }
-  return kNoRegion;
+  return kNone;
+}
+
+// Calls f(h) for the real half-edge h of every hull edge.
+template <class F>
+void for_each_hull_edge(const Mesh& mesh, F&& f) {
+  const std::size_t slots = mesh.num_triangle_slots();
+  for (TriId g = 0; g < slots; ++g) {
+    if (mesh.is_dead(g) || !mesh.is_ghost(g)) continue;
+    const HalfEdgeId h = hull_half_edge(mesh, g);
+    if (h != kNone) f(h);
+  }
 }
 
 // Nesting depth of every region: the fewest segments crossed from outside
@@ -171,70 +186,99 @@ void carve_domain(Mesh& mesh, const Pslg& pslg, const DomainOptions& options, Do
   DomainStats local;
   DomainStats& st = stats ? *stats : local;
   st = DomainStats{};
-
   const std::size_t slots = mesh.num_triangle_slots();
-  const Regions regions = label_regions(mesh);
 
   // -c: the hull edges become segments (before anything is removed, while
   // the ghost triangles still name them).
   if (options.keep_convex_hull) {
-    for (TriId g = 0; g < slots; ++g) {
-      if (mesh.is_dead(g) || !mesh.is_ghost(g)) continue;
-      const HalfEdgeId h = hull_half_edge(mesh, g);
-      if (h == kNone || mesh.is_constrained(h)) continue;
+    for_each_hull_edge(mesh, [&](HalfEdgeId h) {
+      if (mesh.is_constrained(h)) return;
       mesh.constrain_edge(h, 0);
       ++st.hull_segments_added;
-    }
+    });
   }
 
   // Every point is located before the mesh changes.
-  std::vector<char> removed(regions.count, 0);
   TriId hint = kNone;
+  std::vector<TriId> hole_tris;
   if (!options.ignore_holes) {
     for (const Point& h : pslg.holes) {
-      const std::uint32_t r = regions.count ? region_of_point(mesh, regions, h, hint) : kNoRegion;
-      if (r == kNoRegion) {
+      const TriId t = seed_triangle(mesh, h, hint);
+      if (t == kNone) {
         ++st.holes_ignored;
         continue;
       }
       ++st.holes_used;
-      removed[r] = 1;
+      hole_tris.push_back(t);
     }
   }
-  std::vector<std::uint32_t> seed_of(regions.count, kNone);  // region -> last seed in it
   const bool use_seeds = options.regional_attributes || options.regional_area_bounds;
-  std::vector<std::uint32_t> seed_region;
-  if (use_seeds) {
-    seed_region.reserve(pslg.regions.size());
-    for (const RegionSeed& s : pslg.regions)
-      seed_region.push_back(regions.count ? region_of_point(mesh, regions, s.p, hint) : kNoRegion);
-  }
+  std::vector<TriId> seed_tris;
+  if (use_seeds)
+    for (const RegionSeed& r : pslg.regions) seed_tris.push_back(seed_triangle(mesh, r.p, hint));
 
-  if (options.fill == FillRule::Holes) {
-    if (!options.keep_convex_hull) {
-      for (TriId g = 0; g < slots; ++g) {
-        if (mesh.is_dead(g) || !mesh.is_ghost(g)) continue;
-        const HalfEdgeId h = hull_half_edge(mesh, g);
-        if (h != kNone && !mesh.is_constrained(h)) removed[regions.label[tri_of(h)]] = 1;
+  // removed[t] for every triangle slot (ghost and dead slots stay 0), and
+  // per triangle the region seed that applies to it (kNone: none).
+  std::vector<char> removed(slots, 0);
+  std::vector<std::uint32_t> seed_of_tri;
+  if (options.fill == FillRule::Holes && !use_seeds) {
+    // The common case needs no region labels: flood from the exterior and
+    // the hole points, over unconstrained edges, touching only what goes.
+    std::vector<TriId> stack;
+    auto seed = [&](TriId t) {
+      if (!removed[t]) {
+        removed[t] = 1;
+        stack.push_back(t);
+      }
+    };
+    if (!options.keep_convex_hull)
+      for_each_hull_edge(mesh, [&](HalfEdgeId h) {
+        if (!mesh.is_constrained(h)) seed(tri_of(h));
+      });
+    for (TriId t : hole_tris) seed(t);
+    while (!stack.empty()) {
+      const TriId t = stack.back();
+      stack.pop_back();
+      for (HalfEdgeId e = 3 * t; e < 3 * t + 3; ++e) {
+        if (mesh.is_constrained(e)) continue;
+        const HalfEdgeId f = mesh.twin(e);
+        if (f == kNone) continue;
+        const TriId u = tri_of(f);
+        if (!removed[u] && mesh.is_real(u)) seed(u);
       }
     }
   } else {
-    const std::vector<std::uint32_t> depth = region_depths(mesh, regions);
-    for (std::uint32_t r = 0; r < regions.count; ++r) {
-      const bool keep = depth[r] % 2 == 1 || (options.keep_convex_hull && depth[r] == 0);
-      if (!keep) removed[r] = 1;
+    const Regions regions = label_regions(mesh);
+    std::vector<char> region_removed(regions.count, 0);
+    for (TriId t : hole_tris) region_removed[regions.label[t]] = 1;
+    if (options.fill == FillRule::Holes) {
+      if (!options.keep_convex_hull)
+        for_each_hull_edge(mesh, [&](HalfEdgeId h) {
+          if (!mesh.is_constrained(h)) region_removed[regions.label[tri_of(h)]] = 1;
+        });
+    } else {
+      const std::vector<std::uint32_t> depth = region_depths(mesh, regions);
+      for (std::uint32_t r = 0; r < regions.count; ++r) {
+        const bool keep = depth[r] % 2 == 1 || (options.keep_convex_hull && depth[r] == 0);
+        if (!keep) region_removed[r] = 1;
+      }
     }
-  }
-
-  if (use_seeds) {
-    for (std::size_t i = 0; i < seed_region.size(); ++i) {
-      const std::uint32_t r = seed_region[i];
-      if (r == kNoRegion || removed[r]) {
+    std::vector<std::uint32_t> region_seed(regions.count, kNone);  // the last seed in each region
+    for (std::size_t i = 0; i < seed_tris.size(); ++i) {
+      const TriId t = seed_tris[i];
+      if (t == kNone || region_removed[regions.label[t]]) {
         ++st.regions_ignored;
         continue;
       }
       ++st.regions_used;
-      seed_of[r] = static_cast<std::uint32_t>(i);
+      region_seed[regions.label[t]] = static_cast<std::uint32_t>(i);
+    }
+    if (use_seeds) seed_of_tri.assign(slots, kNone);
+    for (TriId t = 0; t < slots; ++t) {
+      const std::uint32_t r = regions.label[t];
+      if (r == kNoRegion) continue;
+      removed[t] = region_removed[r];
+      if (use_seeds) seed_of_tri[t] = region_seed[r];
     }
   }
 
@@ -254,16 +298,13 @@ void carve_domain(Mesh& mesh, const Pslg& pslg, const DomainOptions& options, Do
   }
 
   for (TriId t = 0; t < slots; ++t) {
-    const std::uint32_t r = regions.label[t];
-    if (r == kNoRegion) continue;
-    if (removed[r]) {
+    if (removed[t]) {
       mesh.remove_triangle(t);
       ++st.triangles_removed;
       continue;
     }
-    const std::uint32_t seed = seed_of[r];
-    if (seed == kNone) continue;
-    const RegionSeed& s = pslg.regions[seed];
+    if (!use_seeds || !mesh.is_real(t) || seed_of_tri[t] == kNone) continue;
+    const RegionSeed& s = pslg.regions[seed_of_tri[t]];
     if (options.regional_attributes) mesh.triangle_attributes()[std::size_t{t} * na + attr_index] = s.attribute;
     if (options.regional_area_bounds && s.max_area > 0) mesh.set_triangle_area_bound(t, s.max_area);
   }
