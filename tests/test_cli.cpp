@@ -344,19 +344,15 @@ TEST_F(Cli, RefineReadsMeshAndWritesNextIteration) {
 
 TEST_F(Cli, NumbersAttachedToSwitchesParse) {
   data("square_hole.poly");
-  // q and a take numbers; z and Q after them are switches again. Refinement
-  // is not built yet: the run names both switches with their numbers.
+  // q and a take numbers; z and Q after them are switches again.
   const Result r = run("-pq30.5a0.01zQ square_hole");
-  EXPECT_EQ(r.code, 1);
-  EXPECT_CONTAINS(r.err, "-q30.5 (quality");
-  EXPECT_CONTAINS(r.err, "-a0.01 (maximum triangle area");
-  EXPECT_CONTAINS(r.err, "not available");
-  EXPECT_FALSE(exists("square_hole.1.node"));
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_TRUE(exists("square_hole.1.node"));
+  // -o2 is parsed, then refused while the writers do not take it.
   const Result s = run("-pS100o2Y square_hole");
   EXPECT_EQ(s.code, 1);
-  EXPECT_CONTAINS(s.err, "-S100");
   EXPECT_CONTAINS(s.err, "-o2");
-  EXPECT_CONTAINS(s.err, "-Y");
+  EXPECT_CONTAINS(s.err, "not available");
 }
 
 TEST_F(Cli, UsageErrors) {

@@ -397,7 +397,7 @@ TEST(Refine, MarkersAndAttributesCarried) {
 TEST(Refine, SecondOrderNodes) {
   dm::Mesh mesh = square_with_hole();
   dm::refine(mesh, opts([&](dm::RefineOptions& o) { o.min_angle_deg = 25; o.max_area = 0.01; }));
-  const dm::SecondOrderNodes so = dm::second_order_nodes(mesh);
+  const dm::MidsideNodes so = dm::midside_nodes(mesh);
   const auto rep = dm::quality_report(mesh);
   // One node per edge.
   std::size_t edges = 0;
@@ -418,6 +418,12 @@ TEST(Refine, SecondOrderNodes) {
     }
   }
   (void)rep;
+  // As vertices of the mesh, for the writers' SecondOrderNodes hook.
+  const std::size_t n0 = mesh.num_vertices();
+  const std::vector<dm::VertexId> ids = dm::add_midside_vertices(mesh);
+  EXPECT_EQ(mesh.num_vertices(), n0 + so.points.size());
+  EXPECT_EQ(ids, so.tri_nodes);
+  expect_valid(mesh, false);
 }
 
 TEST(Quality, ReportTextAndJson) {

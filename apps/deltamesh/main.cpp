@@ -10,6 +10,8 @@
 
 #include "deltamesh/deltamesh.hpp"
 #include "deltamesh/formats.hpp"
+#include "deltamesh/quality.hpp"
+#include "deltamesh/refine.hpp"
 #include "deltamesh/switches.hpp"
 #include "deltamesh/triangulate.hpp"
 #include "deltamesh/voronoi.hpp"
@@ -86,6 +88,23 @@ class Run {
     dm::TriangulateStats stats;
     if (opt_.refine) {
       mesh = read_mesh(in);
+      if (opt_.area_from_regions) {
+        // -ra: per-triangle bounds from FILE.area (one per triangle, <= 0: none).
+        const std::string area_path = in + ".area";
+        require_file(area_path);
+        const std::vector<double> bounds = dm::read_area(area_path);
+        if (bounds.size() != mesh.num_triangles())
+          throw dm::InputError(area_path + " has " + std::to_string(bounds.size()) + " bounds for " +
+                               std::to_string(mesh.num_triangles()) + " triangles");
+        for (dm::TriId t = 0; t < bounds.size(); ++t) mesh.set_triangle_area_bound(t, bounds[t]);
+      }
+      if (refining()) {
+        auto t = Clock::now();
+        refine_stats_ = dm::refine(mesh, refine_options());
+        dm::finish_vertex_markers(mesh);
+        refined_ = true;
+        phase("refine", t);
+      }
     } else {
       const std::string in_path = in + (opt_.poly ? ".poly" : ".node");
       require_file(in_path);
@@ -106,7 +125,13 @@ class Run {
       topt.domain.ignore_holes = opt_.ignore_holes;
       topt.domain.regional_attributes = opt_.regional_attributes && opt_.poly;
       topt.check_segments = opt_.check && opt_.poly;
+      topt.domain.regional_area_bounds = opt_.area_from_regions && opt_.poly;
+      if (refining()) topt.refine = refine_options();
       mesh = dm::triangulate(input, topt, &stats);
+      if (topt.refine) {
+        refine_stats_ = stats.refine;
+        refined_ = true;
+      }
       if (opt_.poly) {
         phase(std::string("constrained triangulation (") + std::string(dm::to_string(opt_.cdt_method)) + ")",
               stats.triangulate_seconds, true);
@@ -117,6 +142,7 @@ class Run {
         phase("Delaunay triangulation", stats.triangulate_seconds, true);
         if (opt_.convex_hull) phase("hull segments", stats.domain_seconds, true);
       }
+      if (refined_) phase("refine", stats.refine_seconds, true);
       phase("markers and attributes", stats.finish_seconds, true);
       if (!opt_.quiet)
         for (const std::string& w : stats.warnings) std::fprintf(stderr, "deltamesh: warning: %s\n", w.c_str());
@@ -125,13 +151,14 @@ class Run {
     if (opt_.jettison) mesh.remove_unused_vertices();
 
     int status = kExitOk;
+    if (refined_ && !refine_stats_.complete) status = kExitBudget;
     if (opt_.check) {
       auto t = Clock::now();
       dm::CheckOptions copt;
       // A point set's Delaunay triangulation covers its convex hull; a
       // carved domain need not be convex; a mesh read with -r need not be
       // Delaunay.
-      copt.convex_hull = !opt_.poly && !opt_.refine;
+      copt.convex_hull = !opt_.poly && !opt_.refine && !refined_;  // split hull edges bend by rounding
       copt.delaunay = !opt_.refine && opt_.cdt_method != dm::CdtMethod::Ct;
       dm::CheckReport report = dm::check(mesh, copt);
       // With -p: every segment was a chain of constrained edges before
@@ -200,6 +227,7 @@ class Run {
     phase("total", t_total);
 
     if (!opt_.quiet) report(stats, mesh, written);
+    if (opt_.stats_json) std::printf("%s\n", quality(mesh).json().c_str());
     return status;
   }
 
@@ -264,6 +292,11 @@ class Run {
       if (st.duplicate_vertices) std::printf(" (%zu duplicates merged)", st.duplicate_vertices);
       std::printf(", %zu triangles, %zu hull edges\n", mesh.num_triangles(), boundary);
     }
+    if (refined_) {
+      std::printf("Quality mesh: %s\n", refine_stats_.summary().c_str());
+      if (!refine_stats_.complete)
+        std::fprintf(stderr, "deltamesh: warning: refinement stopped by its budget before reaching the requested quality\n");
+    }
     for (const std::string& w : written) std::printf("  wrote %s\n", w.c_str());
     if (!check_summary_.empty()) std::printf("Check: %s\n", check_summary_.c_str());
     if (opt_.verbose > 0) {
@@ -301,12 +334,43 @@ class Run {
       if (!opt_.refine) std::printf("  segments in output:        %zu\n", st.segments);
       std::printf("  mesh memory:               %.1f MB (%.1f bytes per triangle)\n", mesh.memory_bytes() / 1e6,
                   mesh.num_triangles() ? double(mesh.memory_bytes()) / double(mesh.num_triangles()) : 0.0);
+      if (refined_) std::fputs(quality(mesh).text().c_str(), stdout);
       std::printf("Timings:\n");
       for (const Phase& p : phases_) std::printf("  %-38s %9.3f ms\n", p.name.c_str(), p.seconds * 1e3);
     }
   }
 
+  // Refinement is asked for by -q, -a, -S or -D.
+  bool refining() const { return opt_.quality || opt_.area || opt_.steiner_budget || opt_.conforming_delaunay; }
+
+  dm::RefineOptions refine_options() const {
+    dm::RefineOptions r;
+    r.min_angle_deg = opt_.quality ? opt_.min_angle.value_or(20.0) : 0.0;
+    r.max_area = opt_.max_area.value_or(-1.0);
+    r.use_triangle_area_bounds = opt_.area_from_regions;
+    r.steiner = opt_.steiner;
+    r.encroachment = opt_.encroachment;
+    r.order = opt_.refine_order;
+    r.segment_splitting = opt_.no_boundary_steiner == 0   ? dm::SegmentSplitting::All
+                          : opt_.no_boundary_steiner == 1 ? dm::SegmentSplitting::InteriorOnly
+                                                          : dm::SegmentSplitting::None;
+    r.conforming_delaunay = opt_.conforming_delaunay;
+    if (opt_.steiner_budget) r.max_steiner = *opt_.steiner_budget;
+    r.time_limit_seconds = opt_.time_limit;
+    return r;
+  }
+
+  dm::QualityReport quality(const dm::Mesh& mesh) const {
+    dm::QualityOptions q;
+    q.min_angle_deg = opt_.quality ? opt_.min_angle.value_or(20.0) : 0.0;
+    q.max_area = opt_.max_area.value_or(-1.0);
+    if (refined_) q.input_vertices = refine_stats_.input_vertices;
+    return dm::quality_report(mesh, q, refined_ ? &refine_stats_ : nullptr);
+  }
+
   const Options& opt_;
+  bool refined_ = false;
+  dm::RefineStats refine_stats_;
   std::vector<Phase> phases_;
   int first_index_ = 0;
   std::string check_summary_;  // -C passed: what was checked

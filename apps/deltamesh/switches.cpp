@@ -3,6 +3,7 @@
 #include "deltamesh/formats.hpp"
 
 #include <cctype>
+#include <cstdlib>
 #include <charconv>
 #include <cmath>
 #include <string_view>
@@ -45,7 +46,6 @@ class SwitchString {
           o_.quality = true;
           const std::string_view num = number();
           if (!num.empty()) o_.min_angle = to_double(c, num);
-          planned(c, num, "quality mesh generation with a minimum angle");
           break;
         }
         case 'a': {
@@ -58,7 +58,6 @@ class SwitchString {
             if (!(*o_.max_area > 0))
               throw UsageError{"-a" + std::string(num) + ": the maximum area must be positive"};
           }
-          planned(c, num, "maximum triangle area");
           break;
         }
         case 'S': {
@@ -70,7 +69,6 @@ class SwitchString {
               throw UsageError{"-S" + std::string(num) + ": the Steiner point budget is too large"};
           }
           o_.steiner_budget = n;
-          planned(c, num, "Steiner point budget");
           break;
         }
         case 'o': {
@@ -83,10 +81,11 @@ class SwitchString {
         }
         case 'Y':
           ++o_.no_boundary_steiner;
-          planned(c, {}, "no Steiner points on the boundary");
           break;
-        case 'u': o_.user_area = true; planned(c, {}, "user-defined triangle size constraint"); break;
-        case 'D': o_.conforming_delaunay = true; planned(c, {}, "conforming Delaunay"); break;
+        // -u: Triangle calls a function compiled into it; here that is the
+        // API's RefineOptions::max_area_at / max_edge_at callback.
+        case 'u': o_.user_area = true; planned(c, {}, "user size function: the C++ API's RefineOptions::max_area_at"); break;
+        case 'D': o_.conforming_delaunay = true; break;
         case 'v': o_.voronoi = true; break;
         case 'g': o_.geomview = true; break;
         case 's': o_.split_segments = true; planned(c, {}, "segment splitting"); break;
@@ -163,6 +162,31 @@ Options parse_arguments(const std::vector<std::string>& args) {
                                                             : std::nullopt;
         if (!m) throw UsageError{"--cdt=" + v + ": the method must be fast, ct, lawson or lifting"};
         o.cdt_method = *m;
+      } else if (name == "--steiner") {
+        const std::string v = value(name);
+        const auto r = parse_steiner_rule(v);
+        if (!r) throw UsageError{"--steiner=" + v + ": the rule must be offcenter or circumcenter"};
+        o.steiner = *r;
+      } else if (name == "--encroachment") {
+        const std::string v = value(name);
+        const auto r = parse_encroachment_rule(v);
+        if (!r) throw UsageError{"--encroachment=" + v + ": the rule must be lens or circle"};
+        o.encroachment = *r;
+      } else if (name == "--order") {
+        const std::string v = value(name);
+        if (v == "shortest") o.refine_order = RefineOrder::ShortestEdgeFirst;
+        else if (v == "worst") o.refine_order = RefineOrder::WorstFirst;
+        else throw UsageError{"--order=" + v + ": the order must be shortest or worst"};
+      } else if (name == "--time-limit") {
+        const std::string v = value(name);
+        char* end = nullptr;
+        const double t = std::strtod(v.c_str(), &end);
+        if (end == v.c_str() || *end != '\0' || !(t > 0)) throw UsageError{"--time-limit=" + v + ": seconds, a positive number"};
+        o.time_limit = t;
+      } else if (name == "--stats") {
+        const std::string v = value(name);
+        if (v != "json") throw UsageError{"--stats=" + v + ": the only format is json"};
+        o.stats_json = true;
       } else if (name == "--fill") {
         const std::string v = value(name);
         if (v == "holes") o.fill = FillRule::Holes;
@@ -213,8 +237,15 @@ Switches (Triangle's, combinable as one string, e.g. -pczV):
   -p  read FILE.poly: segments, holes, regional attributes; constrained
       Delaunay triangulation of the domain the segments enclose
   -r  read a mesh (FILE.node, FILE.ele; with -p also FILE.poly for its
-      segments) and write it again as the next iteration (refinement of it
-      is not built yet)
+      segments) and refine it (with -q/-a; -a without a number reads the
+      per-triangle bounds of FILE.area) into the next iteration
+  -q[ANGLE]  quality mesh: no angle below ANGLE degrees (default 20), except
+      in input angles under 60 degrees; up to ~34 in practice
+  -a[AREA]   maximum triangle area; -a without a number: the .poly regions'
+      bounds (with -r: FILE.area)
+  -S[N]      at most N Steiner points (exit code 3 if the bound is not reached)
+  -Y  no Steiner points on boundary segments; -YY none on any segment
+  -D  conforming Delaunay: segments split until every edge is locally Delaunay
   -c  keep the whole convex hull and make its edges segments  --convex-hull
   -A  regional attribute per triangle from the .poly regions  --regional-attributes
   -O  ignore the holes of the .poly file                      --ignore-holes
@@ -234,8 +265,8 @@ Switches (Triangle's, combinable as one string, e.g. -pczV):
   -g  also write FILE.1.off (Geomview's OFF format)
   -h  this help                                               --help
   -i -F -l -X are accepted and have no effect.
-Not available yet (parsed, then refused): -q[angle] -a[area] -u -D -S[n] -Y
--o2 -s.
+Not available yet (parsed, then refused): -o2 -s, and -u (a size function
+compiled in: in the C++ API it is RefineOptions::max_area_at, thread-safe).
 
 Long options:
   --cdt=METHOD     segment insertion: fast (default), ct (flips, not always
@@ -244,6 +275,15 @@ Long options:
   --fill=RULE      holes (default: Triangle's hole points and exterior) or
                    evenodd (keep odd nesting depth; no hole points needed)
   --strict         crossing segments are an error instead of being split
+  --steiner=RULE   refinement's Steiner points: offcenter (default, fewer
+                   triangles) or circumcenter (the seed's algorithm)
+  --encroachment=RULE  lens (default) or circle (the seed's R1): when a
+                   vertex near a segment makes it split
+  --order=ORDER    shortest (default: shortest edge first) or worst (worst
+                   angle first); circumcenter + circle + worst is exactly
+                   Ruppert's algorithm
+  --time-limit=S   stop refining after S seconds (exit code 3)
+  --stats=json     print the mesh quality report as one JSON object
   --svg PATH       write an SVG picture of the mesh
   --output PATH    also write the mesh to PATH, in the format its extension
                    names: .msh (Gmsh) .vtu .vtk (VTK) .svg .geojson .off, or a
@@ -256,6 +296,7 @@ Examples:
   deltamesh -pcA plate               whole convex hull, regional attributes
   deltamesh -rpe plate.1             rebuild plate.1 with its segments -> plate.2.*, with edges
   deltamesh -p --fill=evenodd map    polygons with nested rings and no hole points
+  deltamesh -pq30a0.01V plate        quality mesh, angles >= 30, areas <= 0.01
 
 Exit codes:
   0 success (an empty domain is a success), 1 usage error or a switch not

@@ -6,6 +6,7 @@
 
 #include "deltamesh/cdt.hpp"
 #include "deltamesh/domain.hpp"
+#include "deltamesh/refine.hpp"
 
 namespace deltamesh::cli {
 
@@ -62,6 +63,14 @@ struct Options {
   // choices), -l (divide-and-conquer cuts), -X (exact arithmetic is always on).
 
   // Long options.
+  // Refinement (with -q, -a, -S, -D): where Steiner points go, when a
+  // vertex encroaches a segment, which bad triangle goes first, a time limit,
+  // and the quality report as JSON on standard output.
+  SteinerRule steiner = SteinerRule::Offcenter;                     // --steiner=offcenter|circumcenter
+  EncroachmentRule encroachment = EncroachmentRule::DiametralLens;  // --encroachment=lens|circle
+  RefineOrder refine_order = RefineOrder::ShortestEdgeFirst;        // --order=shortest|worst
+  double time_limit = 0.0;                                          // --time-limit=SECONDS
+  bool stats_json = false;                                          // --stats=json
   CdtMethod cdt_method = CdtMethod::Fast;     // --cdt=fast|ct|lawson|lifting
   FillRule fill = FillRule::Holes;            // --fill=holes|evenodd
   bool strict = false;                        // --strict

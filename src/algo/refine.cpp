@@ -1306,8 +1306,8 @@ std::optional<EncroachmentRule> parse_encroachment_rule(std::string_view name) {
   return std::nullopt;
 }
 
-SecondOrderNodes second_order_nodes(const Mesh& mesh) {
-  SecondOrderNodes out;
+MidsideNodes midside_nodes(const Mesh& mesh) {
+  MidsideNodes out;
   const std::size_t slots = mesh.num_triangle_slots();
   out.tri_nodes.assign(3 * slots, kNone);
   const auto base = static_cast<VertexId>(mesh.num_vertices());
@@ -1335,6 +1335,19 @@ SecondOrderNodes second_order_nodes(const Mesh& mesh) {
     }
   }
   return out;
+}
+
+std::vector<VertexId> add_midside_vertices(Mesh& mesh) {
+  MidsideNodes mid = midside_nodes(mesh);
+  const std::size_t n0 = mesh.num_vertices();
+  const bool markers = !mesh.vertex_markers().empty();
+  if (markers) mesh.vertex_markers().resize(n0, 0);
+  for (std::size_t i = 0; i < mid.points.size(); ++i) {
+    mesh.add_vertex(mid.points[i]);
+    if (markers) mesh.vertex_markers().push_back(mid.markers[i]);
+  }
+  mesh.vertex_attributes().resize(mesh.num_vertices() * mesh.num_vertex_attributes(), 0.0);
+  return std::move(mid.tri_nodes);
 }
 
 }  // namespace deltamesh
