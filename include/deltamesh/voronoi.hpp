@@ -57,7 +57,9 @@ struct VoronoiCell {
 };
 
 struct BoundedVoronoi {
-  std::vector<VoronoiCell> cells;  // one per vertex used by a triangle, in vertex order
+  // One per vertex used by a triangle, in vertex order (a cell that vanishes
+  // numerically, fewer than 3 distinct corners, is left out).
+  std::vector<VoronoiCell> cells;
 };
 
 // Bounded Voronoi cells. The cell of vertex v is computed locally: starting
