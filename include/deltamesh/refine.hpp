@@ -64,9 +64,11 @@ enum class SegmentSplitting {
 
 // No Steiner budget.
 inline constexpr std::size_t kUnlimited = std::numeric_limits<std::size_t>::max();
-// The default budget: unlimited while the angle bound is one refinement is
-// known to reach in practice (<= kAutomaticBudgetAngle), otherwise
-// 10^7 + 100 × (vertices before refinement) Steiner points.
+// The default budget: 2·10^6 + 50 × (vertices before refinement) Steiner
+// points up to kAutomaticBudgetAngle (10^6 + 10 × vertices above it, where
+// refinement need not terminate), raised to four times the vertex count an
+// area bound asks for. It bounds memory on adversarial inputs (thousands of
+// tiny input angles) without cutting ordinary refinements short.
 inline constexpr std::size_t kAutomaticBudget = kUnlimited - 1;
 inline constexpr double kAutomaticBudgetAngle = 34.0;
 

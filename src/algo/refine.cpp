@@ -241,7 +241,8 @@ class Refiner {
   void decide_segments(const std::vector<HalfEdgeId>& encroached, const Eval& ev, Decision& d);
   VertexId new_vertex(const Point& p, std::uint32_t seg, int marker);
   void insert_interior(const Point& c, TriId seed);
-  bool split_segment(HalfEdgeId e);
+  bool split_segment(HalfEdgeId e, const Point* at = nullptr, int depth = 0);
+  void mirror(std::uint32_t seg, VertexId apex, double radius, int depth);
   TriId take_slot(std::size_t i, std::size_t fan, VertexId v);
   bool budget_left();
   HalfEdgeId edge(VertexId a, VertexId b, HalfEdgeId hint) const;
@@ -279,6 +280,9 @@ class Refiner {
   std::vector<std::uint32_t> adj_start_;     // CSR over input vertices
   std::vector<std::pair<VertexId, std::uint32_t>> adj_;  // (other endpoint, segment)
   std::vector<std::uint32_t> seg_of_;        // per Steiner vertex on a segment: its segment
+  // Per segment end (2 s + 0/1): the segments bounding a small domain angle
+  // with it at that end, whose splits are mirrored at the same radius.
+  std::vector<std::array<std::uint32_t, 2>> partners_;
 
   BadQueue queue_;
   std::vector<SubsegmentRef> encroached_;
@@ -324,7 +328,7 @@ void Refiner::setup() {
   has_area_bounds_ = opt_.use_triangle_area_bounds && carry_bounds_;
   budget_ = opt_.max_steiner;
   if (budget_ == kAutomaticBudget)
-    budget_ = theta <= kAutomaticBudgetAngle ? kUnlimited : 10'000'000 + 100 * n_input_;
+    budget_ = theta <= kAutomaticBudgetAngle ? 2'000'000 + 50 * n_input_ : 1'000'000 + 10 * n_input_;
 
   // Bounding box: the precision floor for splitting.
   double lox = 0, hix = 0, loy = 0, hiy = 0;
@@ -378,6 +382,7 @@ void Refiner::setup() {
   // constrained out-edge through unconstrained edges to the next
   // constrained edge; its angle is the sum of the triangle corners in it.
   seg_small_.assign(segs_.size(), 0);
+  partners_.assign(2 * segs_.size(), {kNone, kNone});
   apex_cos_.assign(n_input_, -2.0f);
   for (HalfEdgeId e0 = 0; e0 < ne; ++e0) {
     const VertexId v = tv_[e0];
@@ -408,6 +413,16 @@ void Refiner::setup() {
       const std::uint32_t s2 = input_segment(v, tv_[g]);
       for (std::uint32_t sg : {s1, s2})
         if (sg != kNone) seg_small_[sg] |= segs_[sg][0] == v ? 1 : 2;
+      // Mirrored splits only in the narrow wedges where cascades happen.
+      if (s1 != kNone && s2 != kNone && s1 != s2 && angle < kWedgeAngle * std::numbers::pi / 180) {
+        auto add = [&](std::uint32_t x, std::uint32_t y) {
+          auto& slot = partners_[2 * x + (segs_[x][0] == v ? 0 : 1)];
+          if (slot[0] == kNone) slot[0] = y;
+          else if (slot[1] == kNone && slot[0] != y) slot[1] = y;
+        };
+        add(s1, s2);
+        add(s2, s1);
+      }
     }
   }
   // Out-edges from scratch: any out-edge for an interior vertex, the
@@ -452,6 +467,9 @@ void Refiner::reserve_for_area_bounds() {
   const double tris = 1.75 * estimate + static_cast<double>(nt);
   if (tris > 1e10) return;
   const auto want_t = static_cast<std::size_t>(tris);
+  // Size bounds ask for about want_t / 2 vertices: the automatic budget
+  // leaves room for four times that.
+  if (opt_.max_steiner == kAutomaticBudget) budget_ = std::max(budget_, 2 * want_t);
   if (want_t > nt) {
     m_.reserve(pts_.size() + want_t / 2 + 16, want_t + 16);
     fl_.reserve(3 * (want_t + 16));
@@ -1043,9 +1061,9 @@ void Refiner::insert_interior(const Point& c, TriId seed) {
 }
 
 // Splits the constrained edge e = (a -> b) at its split point.
-bool Refiner::split_segment(HalfEdgeId e) {
+bool Refiner::split_segment(HalfEdgeId e, const Point* at, int depth) {
   const VertexId a = tv_[e], b = tv_[next_edge(e)];
-  const Point mp = split_point(a, b);
+  const Point mp = at ? *at : split_point(a, b);
   const int marker = has_markers_ ? mk_[e] : 0;
   const std::uint8_t flags = fl_[e];
   const bool boundary = tw_[e] == kNone;
@@ -1143,7 +1161,70 @@ bool Refiner::split_segment(HalfEdgeId e) {
     check_encroached(ma2, tv_[prev_edge(ma2)]);
     check_encroached(bm2, tv_[prev_edge(bm2)]);
   }
+  // Segments that bound a small angle with this one get a vertex at the
+  // same distance from the apex: vertices at equal radii never encroach
+  // the partner's subsegments, where unequal ones would start a cascade of
+  // splits down to the width of the wedge.
+  if (opt_.small_angle_protection && seg != kNone && seg_small_[seg] && depth < 4) {
+    for (int end = 0; end < 2; ++end) {
+      if (!(seg_small_[seg] & (1 << end))) continue;
+      const VertexId apex = segs_[seg][end];
+      const double radius = std::sqrt(dist2(mp, pts_[apex]));
+      for (std::uint32_t partner : partners_[2 * seg + end])
+        if (partner != kNone) mirror(partner, apex, radius, depth + 1);
+    }
+  }
   return true;
+}
+
+// Splits segment `seg` (one end at `apex`) at distance `radius` from the
+// apex, unless a vertex of it is already about that far.
+void Refiner::mirror(std::uint32_t seg, VertexId apex, double radius, int depth) {
+  const VertexId other = segs_[seg][0] == apex ? segs_[seg][1] : segs_[seg][0];
+  const Point A = pts_[apex], O = pts_[other];
+  const double len = std::sqrt(dist2(A, O));
+  if (!(radius > 0) || radius >= len) return;
+  auto on_seg = [&](VertexId w) { return w == other || (w >= n_input_ && seg_of_[w] == seg); };
+  VertexId u = apex;
+  double ru = 0;
+  for (std::size_t steps = 0; steps < 100000; ++steps) {
+    // The next vertex of the segment beyond u.
+    VertexId next = kNone;
+    double rn = INFINITY;
+    HalfEdgeId hint = kNone;
+    auto consider_w = [&](VertexId w, HalfEdgeId h) {
+      if (!on_seg(w)) return;
+      const double r = std::sqrt(dist2(pts_[w], A));
+      if (r > ru && r < rn) rn = r, next = w, hint = h;
+    };
+    m_.for_each_out_edge(u, [&](HalfEdgeId h) {
+      if (fl_[h] & kConstrained) consider_w(tv_[next_edge(h)], h);
+      const HalfEdgeId p = prev_edge(h);
+      if (fl_[p] & kConstrained) consider_w(tv_[p], p);
+      return true;
+    });
+    if (next == kNone) return;
+    if (rn < radius) {
+      u = next;
+      ru = rn;
+      continue;
+    }
+    const double piece = rn - ru;
+    if (radius - ru < 0.05 * piece || rn - radius < 0.05 * piece) return;  // already (nearly) there
+    const HalfEdgeId e = tv_[hint] == u ? hint : tw_[hint];
+    if (e == kNone || tv_[e] != u) {
+      const HalfEdgeId f = edge(u, next, kNone);
+      if (f == kNone) return;
+      if (!splittable(f) || !budget_left()) return;
+      const Point p{A.x + (O.x - A.x) * (radius / len), A.y + (O.y - A.y) * (radius / len)};
+      split_segment(f, &p, depth);
+      return;
+    }
+    if (!splittable(e) || !budget_left()) return;
+    const Point p{A.x + (O.x - A.x) * (radius / len), A.y + (O.y - A.y) * (radius / len)};
+    split_segment(e, &p, depth);
+    return;
+  }
 }
 
 // The half-edge a -> b: the hint if it still is one, else a rotation around
