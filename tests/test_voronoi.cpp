@@ -13,6 +13,9 @@
 
 #include "deltamesh/delaunay.hpp"
 #include "deltamesh/predicates.hpp"
+#include "deltamesh/refine.hpp"
+#include "deltamesh/triangle_io.hpp"
+#include "deltamesh/triangulate.hpp"
 #include "deltamesh/validate.hpp"
 #include "deltamesh/voronoi.hpp"
 
@@ -305,6 +308,38 @@ TEST(Voronoi, CellsDoNotCrossANarrowGap) {
       if (s.x >= 1.2) {
         EXPECT_GE(p.x, 1.2 - 1e-12) << s.x << "," << s.y;
       }
+    }
+  }
+}
+
+// A quality conforming Delaunay mesh of a plate with two holes (a square and
+// an octagon) and an interior segment: the cells tile the non-convex domain
+// and stay in it; with a constrained (not conforming) mesh they overlap a
+// little across the interior segment, as documented.
+TEST(Voronoi, CellsTileAConformingMeshWithHoles) {
+  const Pslg g = read_poly(std::string(DELTAMESH_SOURCE_DIR) + "/examples/plate.poly");
+  for (const bool conforming : {true, false}) {
+    TriangulateOptions opt;
+    RefineOptions r;
+    r.min_angle_deg = 25;
+    r.max_area = 0.1;
+    r.conforming_delaunay = conforming;
+    opt.refine = r;
+    const Mesh m = triangulate(g, opt);
+    double area = 0.0;
+    for (TriId t = 0; t < m.num_triangle_slots(); ++t) {
+      if (!m.is_real(t)) continue;
+      const auto v = m.triangle(t);
+      const Point a = m.point(v[0]), b = m.point(v[1]), c = m.point(v[2]);
+      area += 0.5 * ((b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x));
+    }
+    const BoundedVoronoi cells = bounded_voronoi(m);
+    double total = 0.0;
+    for (const VoronoiCell& c : cells.cells) total += c.area;
+    if (conforming) {
+      EXPECT_NEAR(total, area, 1e-9 * area);
+    } else {
+      EXPECT_NEAR(total, area, 1e-3 * area);
     }
   }
 }
