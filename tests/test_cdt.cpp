@@ -24,8 +24,20 @@ using namespace deltamesh;
 
 namespace {
 
-constexpr CdtMethod kMethods[] = {CdtMethod::Fast, CdtMethod::Ct, CdtMethod::Lawson, CdtMethod::Lifting};
-constexpr CdtMethod kCdtMethods[] = {CdtMethod::Fast, CdtMethod::Lawson, CdtMethod::Lifting};
+// A method, and for Fast whether it tries the chain order first (forced
+// here, to test it on every input; statistics then count differently, the
+// CDT is the same).
+struct Variant {
+  constexpr Variant(CdtMethod m, bool c = false) : method(m), chain(c) {}  // NOLINT: implicit on purpose
+  CdtMethod method;
+  bool chain;
+  bool operator!=(CdtMethod m) const { return method != m; }
+  bool operator==(CdtMethod m) const { return method == m; }
+};
+constexpr Variant kFastChain{CdtMethod::Fast, true};
+constexpr Variant kMethods[] = {{CdtMethod::Fast}, kFastChain, {CdtMethod::Ct}, {CdtMethod::Lawson},
+                                {CdtMethod::Lifting}};
+constexpr Variant kCdtMethods[] = {{CdtMethod::Fast}, kFastChain, {CdtMethod::Lawson}, {CdtMethod::Lifting}};
 
 using TriSet = std::set<std::array<VertexId, 3>>;
 
@@ -41,10 +53,11 @@ TriSet triangle_set(const Mesh& m) {
 }
 
 std::string name(CdtMethod m) { return std::string(to_string(m)); }
+std::string name(Variant v) { return name(v.method) + (v.chain ? "-chain" : ""); }
 
 // Valid mesh, every segment a constrained chain, constrained Delaunay
 // unless the method is Ct; returns the report.
-CheckReport expect_valid(const Mesh& m, const Pslg& g, CdtMethod method, const std::string& what) {
+CheckReport expect_valid(const Mesh& m, const Pslg& g, Variant method, const std::string& what) {
   CheckOptions o;
   o.pslg = &g;
   o.delaunay = method != CdtMethod::Ct;
@@ -53,11 +66,15 @@ CheckReport expect_valid(const Mesh& m, const Pslg& g, CdtMethod method, const s
   return r;
 }
 
-Mesh cdt(const Pslg& g, CdtMethod method, CdtStats* st = nullptr, bool strict = false) {
+Mesh cdt(const Pslg& g, Variant method, CdtStats* st = nullptr, bool strict = false) {
   CdtOptions o;
-  o.method = method;
+  o.method = method.method;
+  o.chain_order = method.chain ? ChainOrder::Always : ChainOrder::Never;
   o.strict = strict;
   return constrained_triangulation(g, o, st);
+}
+Mesh cdt(const Pslg& g, CdtMethod method, CdtStats* st = nullptr, bool strict = false) {
+  return cdt(g, Variant{method}, st, strict);
 }
 
 // Proper crossing or touching of two segments (exact), sharing endpoints allowed.
@@ -128,16 +145,24 @@ Pslg scaled(Pslg g, double s) {
   return g;
 }
 
-// All methods valid; Fast, Lawson and Lifting identical.
+// All methods valid; Fast, Lawson and Lifting identical. Fast in chain order
+// too, unless segments cross (the crossings are then found in another order
+// and rounded differently).
 void expect_methods_agree(const Pslg& g, const std::string& what, CdtStats* fast_stats = nullptr) {
   TriSet reference;
-  for (CdtMethod method : kMethods) {
+  std::size_t crossings = 0;
+  for (Variant method : kMethods) {
     CdtStats st;
     const Mesh m = cdt(g, method, &st);
     expect_valid(m, g, method, what);
-    if (method == CdtMethod::Fast) {
+    if (method == CdtMethod::Fast && !method.chain) {
       reference = triangle_set(m);
+      crossings = st.intersections;
       if (fast_stats) *fast_stats = st;
+    } else if (method.chain) {
+      if (crossings == 0) {
+        EXPECT_TRUE(triangle_set(m) == reference) << what << ": fast-chain differs from fast";
+      }
     } else if (method != CdtMethod::Ct) {
       EXPECT_TRUE(triangle_set(m) == reference) << what << ": " << name(method) << " differs from fast";
       // (Lawson's Ct phase may stall and finish a piece with Fast: see CtRuleTwoCanStall.)
@@ -163,7 +188,7 @@ TEST(CdtDifferential, NoSegmentsEqualsDelaunay) {
     Pslg g;
     g.points = gen::uniform_points(3000, seed);
     const Mesh d = delaunay(g.points);
-    for (CdtMethod method : kMethods) {
+    for (Variant method : kMethods) {
       const Mesh m = cdt(g, method);
       expect_valid(m, g, method, "no segments");
       EXPECT_TRUE(triangle_set(m) == triangle_set(d)) << name(method);
@@ -179,7 +204,7 @@ TEST(CdtDifferential, SegmentsThatAreDelaunayEdgesChangeNothing) {
     const auto v = d.triangle(t);
     g.segments.push_back({v[0], v[1], 0});
   }
-  for (CdtMethod method : kMethods) {
+  for (Variant method : kMethods) {
     CdtStats st;
     const Mesh m = cdt(g, method, &st);
     expect_valid(m, g, method, "Delaunay edges as segments");
@@ -238,12 +263,14 @@ TEST(CdtGolden, KiteWithItsNonDelaunayDiagonal) {
   g.points = {{0, 0}, {4, 0}, {2, 1}, {2, -1}};
   EXPECT_TRUE(triangle_set(delaunay(g.points)) == (TriSet{{0, 2, 3}, {1, 2, 3}}));
   g.segments = {{0, 1, 5}};
-  for (CdtMethod method : kMethods) {
+  for (Variant method : kMethods) {
     CdtStats st;
     const Mesh m = cdt(g, method, &st);
     expect_valid(m, g, method, "kite");
     EXPECT_TRUE(triangle_set(m) == (TriSet{{0, 1, 2}, {0, 1, 3}})) << name(method);
-    EXPECT_EQ(st.edges_crossed, 1u);
+    if (!method.chain) {
+      EXPECT_EQ(st.edges_crossed, 1u);
+    }
     const HalfEdgeId e = m.find_edge(0, 1);
     ASSERT_NE(e, kNone);
     EXPECT_TRUE(m.is_constrained(e));
@@ -262,7 +289,7 @@ TEST(CdtGolden, PseudoPolygonPicksTheEmptyCircle) {
   g.points = {{0, 0}, {10, 0}, {2, 3}, {7, 2}, {5, -3}};
   EXPECT_FALSE(has_edge(delaunay(g.points), 0, 1, false));
   g.segments = {{0, 1, 0}};
-  for (CdtMethod method : kCdtMethods) {
+  for (Variant method : kCdtMethods) {
     const Mesh m = cdt(g, method);
     expect_valid(m, g, method, "pseudo-polygon");
     EXPECT_TRUE(triangle_set(m) == (TriSet{{0, 1, 3}, {0, 2, 3}, {0, 1, 4}})) << name(method);
@@ -275,7 +302,7 @@ TEST(CdtGolden, SquareWithCrossedDiagonals) {
   Pslg g;
   g.points = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
   g.segments = {{0, 2, 1}, {1, 3, 2}};
-  for (CdtMethod method : kMethods) {
+  for (Variant method : kMethods) {
     CdtStats st;
     const Mesh m = cdt(g, method, &st);
     expect_valid(m, g, method, "crossed diagonals");
@@ -297,7 +324,7 @@ TEST(CdtDegenerate, VertexOnSegmentSplitsIt) {
   Pslg g;
   g.points = {{0, 0}, {1, 0}, {2, 0}, {3, 0}, {1.5, 1}, {1.5, -1}, {0.7, 0.2}};
   g.segments = {{0, 3, 7}};
-  for (CdtMethod method : kMethods) {
+  for (Variant method : kMethods) {
     CdtStats st;
     const Mesh m = cdt(g, method, &st);
     expect_valid(m, g, method, "vertex on segment");
@@ -317,7 +344,7 @@ TEST(CdtDegenerate, VerticesOnALongDiagonal) {
   g.points = gen::grid_points(k * k);
   g.segments = {{0, static_cast<VertexId>(k * k - 1), 3}, {static_cast<VertexId>(k - 1),
                                                            static_cast<VertexId>(k * (k - 1)), 4}};
-  for (CdtMethod method : kMethods) {
+  for (Variant method : kMethods) {
     CdtStats st;
     const Mesh m = cdt(g, method, &st);
     expect_valid(m, g, method, "grid diagonals");
@@ -332,7 +359,7 @@ TEST(CdtDegenerate, CollinearOverlappingSegmentsMerge) {
   Pslg g;
   g.points = {{0, 0}, {1, 0}, {2, 0}, {3, 0}, {1.5, 2}, {1.5, -2}};
   g.segments = {{0, 2, 0}, {1, 3, 9}, {0, 3, 4}, {2, 1, 0}};
-  for (CdtMethod method : kMethods) {
+  for (Variant method : kMethods) {
     CdtStats st;
     const Mesh m = cdt(g, method, &st);
     expect_valid(m, g, method, "overlaps");
@@ -344,7 +371,9 @@ TEST(CdtDegenerate, CollinearOverlappingSegmentsMerge) {
     EXPECT_EQ(m.edge_marker(m.find_edge(1, 2)), 9);
     EXPECT_EQ(m.edge_marker(m.find_edge(2, 3)), 9);
     // Pieces met constrained already: seg 1 on (1,2); seg 2 on (0,1),(1,2),(2,3); seg 3 whole.
-    EXPECT_EQ(st.overlaps_merged, 5u);
+    if (!method.chain) {
+      EXPECT_EQ(st.overlaps_merged, 5u);
+    }  // (counted in insertion order)
   }
 }
 
@@ -352,7 +381,7 @@ TEST(CdtDegenerate, TwoCrossingSegments) {
   Pslg g;
   g.points = {{0, 0}, {3, 1}, {1, 2}, {2, -1}, {5, 5}, {-2, 4}};
   g.segments = {{0, 1, 1}, {2, 3, 2}};
-  for (CdtMethod method : kMethods) {
+  for (Variant method : kMethods) {
     CdtStats st;
     const Mesh m = cdt(g, method, &st);
     expect_valid(m, g, method, "two crossing");
@@ -374,7 +403,7 @@ TEST(CdtDegenerate, StrictModeNamesBothSegments) {
   Pslg g;
   g.points = {{0, 0}, {3, 1}, {1, 2}, {2, -1}, {5, 5}, {-2, 4}, {4, 4}};
   g.segments = {{4, 6, 0}, {0, 1, 0}, {2, 3, 0}};
-  for (CdtMethod method : kMethods) {
+  for (Variant method : kMethods) {
     try {
       cdt(g, method, nullptr, true);
       ADD_FAILURE() << "no exception " << name(method);
@@ -388,7 +417,7 @@ TEST(CdtDegenerate, StrictModeNamesBothSegments) {
   Pslg ok;
   ok.points = {{0, 0}, {1, 0}, {2, 0}, {1, 1}, {1, -1}};
   ok.segments = {{0, 2, 0}, {0, 1, 0}, {3, 1, 0}, {1, 4, 0}};
-  for (CdtMethod method : kMethods) EXPECT_NO_THROW(cdt(ok, method, nullptr, true));
+  for (Variant method : kMethods) EXPECT_NO_THROW(cdt(ok, method, nullptr, true));
 }
 
 TEST(CdtDegenerate, StarThroughOneExactPoint) {
@@ -402,7 +431,7 @@ TEST(CdtDegenerate, StarThroughOneExactPoint) {
     g.points.push_back({-static_cast<double>(d[0]), -static_cast<double>(d[1])});
     g.segments.push_back({i, i + 1, static_cast<int>(i / 2 + 1)});
   }
-  for (CdtMethod method : kMethods) {
+  for (Variant method : kMethods) {
     CdtStats st;
     const Mesh m = cdt(g, method, &st);
     expect_valid(m, g, method, "exact star");
@@ -436,7 +465,7 @@ TEST(CdtDegenerate, DuplicateVerticesAreMerged) {
   Pslg g;
   g.points = {{0, 0}, {2, 0}, {1, 1}, {1, -1}, {0, 0}, {2, 0}, {1, 1}};
   g.segments = {{4, 5, 1}, {6, 3, 2}, {0, 6, 3}};
-  for (CdtMethod method : kMethods) {
+  for (Variant method : kMethods) {
     CdtStats st;
     const Mesh m = cdt(g, method, &st);
     expect_valid(m, g, method, "duplicates");
@@ -456,7 +485,7 @@ TEST(CdtDegenerate, ZeroLengthSegmentsAreIgnored) {
   Pslg g;
   g.points = {{0, 0}, {1, 0}, {0, 1}, {1, 1}, {1, 1}};
   g.segments = {{0, 0, 0}, {3, 4, 0}, {0, 3, 1}};
-  for (CdtMethod method : kMethods) {
+  for (Variant method : kMethods) {
     CdtStats st;
     const Mesh m = cdt(g, method, &st);
     expect_valid(m, g, method, "zero length");
@@ -471,11 +500,12 @@ TEST(CdtDegenerate, SegmentsOnTheConvexHull) {
   Pslg g;
   g.points = {{0, 0}, {4, 0}, {4, 4}, {0, 4}, {1, 0}, {2, 0}, {3, 0}, {4, 2}, {2, 2}, {1, 3}};
   g.segments = {{0, 1, 1}, {1, 2, 2}, {2, 3, 3}, {3, 0, 4}, {4, 6, 5}, {0, 2, 6}};
-  for (CdtMethod method : kMethods) {
+  for (Variant method : kMethods) {
     CdtStats st;
     const Mesh m = cdt(g, method, &st);
     expect_valid(m, g, method, "hull segments");
-    EXPECT_EQ(st.vertices_on_segments, 3u + 1u + 1u + 1u);  // 0-1: 4,5,6; 1-2: 7; 4-6: 5; 0-2: 8
+    // 0-1: 4,5,6; 1-2: 7; 4-6: 5; 0-2: 8 (in chain order 5 is met once, on 0-1 and 4-6 at once)
+    EXPECT_EQ(st.vertices_on_segments, method.chain ? 5u : 6u);
     EXPECT_EQ(m.edge_marker(m.find_edge(4, 5)), 1);
   }
 }
@@ -489,7 +519,7 @@ TEST(CdtDegenerate, CocircularGridWithSegments) {
     const auto a = static_cast<VertexId>(rng.below(k * k)), b = static_cast<VertexId>(rng.below(k * k));
     if (a != b) g.segments.push_back({a, b, s});
   }
-  for (CdtMethod method : kMethods) {
+  for (Variant method : kMethods) {
     CdtStats st;
     const Mesh m = cdt(g, method, &st);
     expect_valid(m, g, method, "grid with segments");
@@ -499,7 +529,7 @@ TEST(CdtDegenerate, CocircularGridWithSegments) {
 TEST(CdtDegenerate, ManyRandomCrossings) {
   for (std::uint64_t seed = 1; seed <= 4; ++seed) {
     const Pslg g = random_crossing_pslg(300, 150, seed);
-    for (CdtMethod method : kMethods) {
+    for (Variant method : kMethods) {
       CdtStats st;
       const Mesh m = cdt(g, method, &st);
       expect_valid(m, g, method, "many crossings seed " + std::to_string(seed));
@@ -522,7 +552,7 @@ TEST(CdtDegenerate, NearlyParallelSegments) {
   }
   g.points.push_back({0.5, 0.0});
   g.points.push_back({0.5, 2.0});
-  for (CdtMethod method : kMethods) {
+  for (Variant method : kMethods) {
     CdtStats st;
     const Mesh m = cdt(g, method, &st);
     expect_valid(m, g, method, "nearly parallel");
@@ -614,11 +644,13 @@ TEST(CdtLifting, SeedOrderDoesNotGiveTheCdt) {
   EXPECT_LT(incircle(a, g.points[2], b, g.points[4]), 0);
   EXPECT_EQ(detail::compare_seed_event_times(a, b, g.points[3], g.points[2], g.points[3], g.points[4]), -1);
   g.segments = {{0, 1, 0}};
-  for (CdtMethod method : kCdtMethods) {
+  for (Variant method : kCdtMethods) {
     CdtStats st;
     const Mesh m = cdt(g, method, &st);
     expect_valid(m, g, method, "seed counterexample");
-    EXPECT_EQ(st.edges_crossed, 2u);
+    if (!method.chain) {
+      EXPECT_EQ(st.edges_crossed, 2u);
+    }
     EXPECT_TRUE(has_edge(m, 2, 1, false)) << name(method);
     EXPECT_FALSE(has_edge(m, 0, 4, false)) << name(method);
   }
@@ -652,15 +684,16 @@ TEST(CdtLifting, KineticEvents) {
 // Statistics and method names.
 
 TEST(CdtApi, MethodNamesRoundTrip) {
-  for (CdtMethod m : kMethods) EXPECT_EQ(parse_cdt_method(to_string(m)), m);
+  for (Variant m : kMethods) EXPECT_EQ(parse_cdt_method(to_string(m.method)), m.method);
   EXPECT_FALSE(parse_cdt_method("delaunay").has_value());
 }
 
 TEST(CdtApi, FlipCountsFollowTheSeed) {
-  // Lawson does at least Ct's flips; Fast flips nothing.
+  // Fast (in the classic order) flips nothing.
   const Pslg g = random_pslg(400, 120, 77);
   CdtStats fast, ct, lawson, lifting;
   cdt(g, CdtMethod::Fast, &fast);
+  EXPECT_FALSE(fast.chain_order);
   cdt(g, CdtMethod::Ct, &ct);
   cdt(g, CdtMethod::Lawson, &lawson);
   cdt(g, CdtMethod::Lifting, &lifting);
@@ -673,4 +706,79 @@ TEST(CdtApi, FlipCountsFollowTheSeed) {
   EXPECT_GE(ct.flips, ct.edges_crossed);
   EXPECT_GE(lawson.flips, lawson.edges_crossed);
   EXPECT_EQ(lifting.method_fallbacks, 0u);
+}
+
+// ---------------------------------------------------------------------------
+// Fast's chain order.
+
+TEST(CdtChainOrder, UsedOnPolygonsAndSameCdt) {
+  for (std::size_t n : {10u, 1000u, 20000u}) {
+    const Pslg g = gen::star_polygon(n, 7);
+    CdtStats chain, classic;
+    const Mesh a = cdt(g, kFastChain, &chain);
+    const Mesh b = cdt(g, CdtMethod::Fast, &classic);
+    EXPECT_TRUE(chain.chain_order) << n;
+    EXPECT_FALSE(classic.chain_order);
+    expect_valid(a, g, kFastChain, "star chain order");
+    EXPECT_TRUE(triangle_set(a) == triangle_set(b)) << n;
+    // Segments meet far fewer edges when inserted as their vertices arrive.
+    if (n >= 1000) {
+      EXPECT_LT(chain.edges_crossed * 4, classic.edges_crossed) << n;
+    }
+    // The default options use it on these long segments.
+    CdtStats def;
+    constrained_triangulation(g, {}, &def);
+    if (n >= 1000) {
+      EXPECT_TRUE(def.chain_order);
+    }
+  }
+}
+
+TEST(CdtChainOrder, GivesUpOnConvexCurves) {
+  // Points along an ellipse inserted in order make every insertion flip
+  // across the whole triangulation; the attempt stops and the classic order
+  // gives the same CDT.
+  Pslg g;
+  const std::size_t n = 20000;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double t = 2 * std::numbers::pi * static_cast<double>(i) / n;
+    g.points.push_back({std::cos(t), 0.5 * std::sin(t)});
+    g.segments.push_back({static_cast<VertexId>(i), static_cast<VertexId>((i + 1) % n), 1});
+  }
+  CdtStats st;
+  const Mesh m = cdt(g, kFastChain, &st);
+  EXPECT_TRUE(st.chain_order_abandoned);
+  EXPECT_FALSE(st.chain_order);
+  expect_valid(m, g, kFastChain, "ellipse");
+  EXPECT_EQ(st.segments_inserted, n);
+}
+
+TEST(CdtChainOrder, LoosePointsAndManyChains) {
+  // Random short segments (many small chains) plus points on no segment.
+  for (std::uint64_t seed = 1; seed <= 5; ++seed) {
+    Pslg g = random_pslg(3000, 600, seed, true);
+    CdtStats chain, classic;
+    const Mesh a = cdt(g, kFastChain, &chain);
+    const Mesh b = cdt(g, CdtMethod::Fast, &classic);
+    expect_valid(a, g, kFastChain, "chains and loose points");
+    EXPECT_TRUE(triangle_set(a) == triangle_set(b)) << seed;
+  }
+}
+
+TEST(CdtChainOrder, NotTriedOnShortSegments) {
+  // Coastline-like input: segments as short as the vertex spacing along
+  // them, far below the spacing of the vertices over the bounding box.
+  Pslg g;
+  const std::size_t n = 5000;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double t = 2 * std::numbers::pi * static_cast<double>(i) / n;
+    const double r = 1 + 0.1 * std::sin(37 * t);
+    g.points.push_back({r * std::cos(t), r * std::sin(t)});
+    g.segments.push_back({static_cast<VertexId>(i), static_cast<VertexId>((i + 1) % n), 0});
+  }
+  CdtStats st;
+  const Mesh m = constrained_triangulation(g, {}, &st);
+  EXPECT_FALSE(st.chain_order);
+  EXPECT_FALSE(st.chain_order_abandoned);
+  expect_valid(m, g, CdtMethod::Fast, "short segments");
 }

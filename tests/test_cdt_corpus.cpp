@@ -1,7 +1,7 @@
 // Every file of the shared corpus (../shared/corpus: real inputs from other
 // projects, many with crossing or overlapping segments, vertices on
 // segments and duplicates) through constrained_triangulation with each of
-// the four methods; every result through the validator with the PSLG (every
+// the four methods (Fast in both orders); every result through the validator with the PSLG (every
 // segment a chain of constrained edges; constrained Delaunay except for Ct).
 // Inputs with all points collinear must fail with InputError, and nothing
 // else may throw. Skipped with a message when the corpus is not there.
@@ -60,7 +60,7 @@ bool degenerate(const std::vector<Point>& p) {
 TEST(CdtCorpus, EveryFileEveryMethod) {
   const std::vector<fs::path> files = corpus_files();
   if (files.empty()) GTEST_SKIP() << "no corpus at " << corpus_dir() << " (it is not part of the repository)";
-  std::size_t meshes = 0, segments = 0, intersections = 0, fallbacks = 0;
+  std::size_t meshes = 0, segments = 0, intersections = 0, fallbacks = 0, chain_used = 0;
   for (const fs::path& file : files) {
     const std::string name = file.filename().string();
     Pslg g;
@@ -70,10 +70,19 @@ TEST(CdtCorpus, EveryFileEveryMethod) {
       ADD_FAILURE() << name << ": cannot be read: " << e.what();
       continue;
     }
-    for (CdtMethod method : {CdtMethod::Fast, CdtMethod::Ct, CdtMethod::Lawson, CdtMethod::Lifting}) {
-      const std::string what = name + " [" + std::string(to_string(method)) + "]";
+    // Fast twice: trying the chain order first (forced, to test it on every
+    // file) and the classic order.
+    const std::pair<CdtMethod, bool> variants[] = {{CdtMethod::Fast, true},
+                                                   {CdtMethod::Fast, false},
+                                                   {CdtMethod::Ct, false},
+                                                   {CdtMethod::Lawson, false},
+                                                   {CdtMethod::Lifting, false}};
+    for (const auto& [method, chain] : variants) {
+      const std::string what =
+          name + " [" + std::string(to_string(method)) + (chain ? "" : method == CdtMethod::Fast ? "-classic" : "") + "]";
       CdtOptions opt;
       opt.method = method;
+      opt.chain_order = chain ? ChainOrder::Always : ChainOrder::Never;
       CdtStats st;
       Mesh m;
       try {
@@ -89,14 +98,17 @@ TEST(CdtCorpus, EveryFileEveryMethod) {
       EXPECT_TRUE(r.ok()) << what << ": " << r.summary();
       EXPECT_EQ(r.segments_checked, st.segments_inserted) << what;
       ++meshes;
-      if (method == CdtMethod::Fast) {
+      if (method == CdtMethod::Fast && chain) {
         segments += st.segments_inserted;
         intersections += st.intersections;
+        chain_used += st.chain_order;
       }
       if (method == CdtMethod::Lifting) fallbacks += st.method_fallbacks;
     }
   }
   RecordProperty("meshes", static_cast<int>(meshes));
-  std::printf("[ corpus   ] %zu files, %zu meshes, %zu segments, %zu crossings resolved, %zu lifting fallbacks\n",
-              files.size(), meshes, segments, intersections, fallbacks);
+  std::printf(
+      "[ corpus   ] %zu files, %zu meshes, %zu segments, %zu crossings resolved, %zu lifting fallbacks, chain order "
+      "kept on %zu files\n",
+      files.size(), meshes, segments, intersections, fallbacks, chain_used);
 }

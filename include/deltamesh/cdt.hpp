@@ -23,11 +23,23 @@ enum class CdtMethod {
 std::string_view to_string(CdtMethod m);
 std::optional<CdtMethod> parse_cdt_method(std::string_view name);
 
+// Whether Fast first tries inserting the vertices along the segment chains
+// (see CdtStats::chain_order).
+enum class ChainOrder {
+  Auto,    // when the segments are long against the vertex spacing
+  Always,  // whatever the input (it still gives up when over budget)
+  Never,   // the classic order only
+};
+
 struct CdtOptions {
   CdtMethod method = CdtMethod::Fast;
   // Crossing segments are an error (IntersectingSegments) instead of being
   // split at their intersection.
   bool strict = false;
+  // Fast only: try inserting the vertices along the segment chains first,
+  // each segment as soon as its endpoints are in (see CdtStats::chain_order).
+  // The CDT is the same either way on input in general position.
+  ChainOrder chain_order = ChainOrder::Auto;
 };
 
 struct CdtStats {
@@ -47,6 +59,17 @@ struct CdtStats {
   // the crossed edge and was inserted as a free vertex instead.
   std::size_t method_fallbacks = 0;
   std::size_t intersection_fallbacks = 0;
+  // When the segments are long against the spacing of the vertices (mean
+  // length over twice sqrt(bounding box area / vertices): a star-shaped
+  // polygon, not a coastline), Fast first inserts the vertices along the
+  // segment chains and each segment as soon as its endpoints are in
+  // (chain_order: it did; vertices and segments are then timed together in
+  // triangulate_seconds). It gives up when that order makes point location
+  // or flips too costly (chain_order_abandoned: points along a convex curve),
+  // and the classic order follows: the Delaunay triangulation of all
+  // vertices, then the segments one by one.
+  bool chain_order = false;
+  bool chain_order_abandoned = false;
   double triangulate_seconds = 0.0;      // Delaunay of the vertices
   double segments_seconds = 0.0;         // segment recovery
 };
@@ -58,8 +81,8 @@ struct CdtStats {
 // segment crossings follow.
 //
 // Degenerate input is handled as users expect: a vertex exactly on a segment
-// splits it; collinear overlapping segments merge (an edge constrained twice
-// keeps the first nonzero marker); crossing segments (topology decided by
+// splits it; collinear overlapping segments merge (an edge of several keeps
+// the marker of the lowest-numbered one with a nonzero marker); crossing segments (topology decided by
 // exact predicates) get their intersection inserted as a new vertex, the
 // point rounded to doubles, and both are split there (IntersectingSegments
 // instead under options.strict); zero-length segments are ignored and counted.

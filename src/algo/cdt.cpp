@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <string>
 
 #include "algo/cdt_builder.hpp"
@@ -67,8 +68,30 @@ CdtBuilder::CdtBuilder(Mesh& mesh, const Pslg& pslg, const CdtOptions& options, 
   // Both per-half-edge arrays exist from now on, so the mesh's topological
   // operations keep them in step.
   if (flags_.size() != tv_.size()) flags_.assign(tv_.size(), 0);
-  if (seg_of_.size() != tv_.size()) seg_of_.assign(tv_.size(), 0);
+  // Segment indices are only needed to name crossing segments (strict) and
+  // to give edges their markers; without either the marker array stays
+  // empty and every constrained edge counts as segment 0.
+  for (const Segment& s : pslg.segments) ids_ = ids_ || s.marker != 0;
+  ids_ = ids_ || options.strict;
+  if (ids_ && seg_of_.size() != tv_.size()) seg_of_.assign(tv_.size(), 0);
   max_steiner_ = static_cast<std::size_t>(saturating_pairs(pslg.segments.size())) + 16;
+  // The static incircle filter's bound (incircle_fast): differences of
+  // coordinates within the bounding box (crossing vertices lie inside it).
+  if (!pslg.points.empty()) {
+    double x0 = pslg.points[0].x, x1 = x0, y0 = pslg.points[0].y, y1 = y0;
+    for (const Point& q : pslg.points) {
+      x0 = std::min(x0, q.x);
+      x1 = std::max(x1, q.x);
+      y0 = std::min(y0, q.y);
+      y1 = std::max(y1, q.y);
+    }
+    const double box = std::max(x1 - x0, y1 - y0) * (1.0 + 1e-12);
+    const double box2 = box * box;
+    // Beyond the range where a fourth power stays finite and normal, the
+    // bound is useless: leave it infinite, so incircle() always decides.
+    static_err_ = box2 > 0x1p-450 && box2 < 0x1p450 ? kIncircleErrA * 12.0 * box2 * box2 * (1.0 + 1e-6)
+                                                     : std::numeric_limits<double>::infinity();
+  }
   crossings_.reserve(64);
 }
 
@@ -182,16 +205,21 @@ CdtBuilder::Trace CdtBuilder::trace(VertexId a, VertexId b) {
 
 void CdtBuilder::mark(HalfEdgeId e, std::uint32_t seg) {
   const HalfEdgeId f = tw_[e];
-  int keep = static_cast<int>(seg);
-  if (flags_[e] & kConstrained) {
-    // An edge of two overlapping segments keeps the first nonzero marker.
-    const int old = seg_of_[e];
-    if (pslg_.segments[static_cast<std::size_t>(old)].marker != 0 || pslg_.segments[seg].marker == 0) keep = old;
+  if (ids_) {
+    int keep = static_cast<int>(seg);
+    if (flags_[e] & kConstrained) {
+      // An edge of overlapping segments keeps the marker of the lowest-numbered
+      // one with a nonzero marker (whatever the order they were inserted in).
+      const int old = seg_of_[e];
+      const bool old_nz = pslg_.segments[static_cast<std::size_t>(old)].marker != 0;
+      const bool new_nz = pslg_.segments[seg].marker != 0;
+      if (old_nz != new_nz ? old_nz : old < keep) keep = old;
+    }
+    seg_of_[e] = keep;
+    seg_of_[f] = keep;
   }
   flags_[e] |= kConstrained;
   flags_[f] |= kConstrained;
-  seg_of_[e] = keep;
-  seg_of_[f] = keep;
 }
 
 bool CdtBuilder::split_fits(HalfEdgeId cd, const Point& p) const {
@@ -203,7 +231,7 @@ bool CdtBuilder::split_fits(HalfEdgeId cd, const Point& p) const {
 }
 
 void CdtBuilder::resolve_crossing(const Piece& p, HalfEdgeId cd) {
-  const auto other = static_cast<std::uint32_t>(seg_of_[cd]);
+  const std::uint32_t other = seg_id(cd);
   if (opt_.strict) throw IntersectingSegments(std::min(other, p.seg), std::max(other, p.seg));
   if (++steiner_ > max_steiner_)
     throw InputError("more vertices added at segment crossings than there are segment pairs (" +
@@ -249,7 +277,7 @@ void CdtBuilder::resolve_crossing(const Piece& p, HalfEdgeId cd) {
   const HalfEdgeId dc = tw_[cd];
   flags_[cd] &= static_cast<std::uint8_t>(~kConstrained);
   flags_[dc] &= static_cast<std::uint8_t>(~kConstrained);
-  seg_of_[cd] = seg_of_[dc] = 0;
+  if (ids_) seg_of_[cd] = seg_of_[dc] = 0;
   // cd was locally Delaunay only as a segment: flip where needed first, so
   // that the triangulation is the CDT of what is constrained now.
   const TriId hint = tri_of(cd);
@@ -267,6 +295,13 @@ void CdtBuilder::resolve_crossing(const Piece& p, HalfEdgeId cd) {
 }
 
 void CdtBuilder::finish() {
+  bool markers = false;
+  for (const Segment& s : pslg_.segments) markers = markers || s.marker != 0;
+  if (!markers) {  // every constrained edge gets marker 0: no marker array
+    seg_of_.clear();
+    return;
+  }
+  // (markers imply ids_: seg_of_ holds segment indices)
   bool any_marker = false, any_constrained = false;
   for (HalfEdgeId e = 0; e < tv_.size(); ++e) {
     if (tv_[e - e % 3] != kNone && (flags_[e] & kConstrained)) {
@@ -286,6 +321,59 @@ void CdtBuilder::finish() {
 namespace {
 using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+// Are the segments long against the spacing of the vertices (their mean
+// length over twice sqrt(bounding box area / vertices))? Then, in the
+// classic order, each crosses many Delaunay edges and the chain order pays
+// (a star-shaped polygon: 26; coastlines and lakes: 0.05 to 0.6, where the
+// classic order is up to three times faster).
+bool long_segments(const Pslg& pslg) {
+  if (pslg.segments.empty() || pslg.points.size() < 3) return false;
+  double x0 = pslg.points[0].x, x1 = x0, y0 = pslg.points[0].y, y1 = y0;
+  for (const Point& p : pslg.points) {
+    x0 = std::min(x0, p.x);
+    x1 = std::max(x1, p.x);
+    y0 = std::min(y0, p.y);
+    y1 = std::max(y1, p.y);
+  }
+  const double area = (x1 - x0) * (y1 - y0);
+  if (!(area > 0) || !std::isfinite(area)) return false;
+  double length = 0;
+  for (const Segment& s : pslg.segments) {
+    if (s.a >= pslg.points.size() || s.b >= pslg.points.size()) return false;
+    length += std::hypot(pslg.points[s.a].x - pslg.points[s.b].x, pslg.points[s.a].y - pslg.points[s.b].y);
+  }
+  const double spacing = std::sqrt(area / static_cast<double>(pslg.points.size()));
+  return length / static_cast<double>(pslg.segments.size()) > 2.0 * spacing;
+}
+
+// Of equal points the triangulation keeps the one it inserted first; keep
+// the first in input order instead (deterministic, and what a user
+// numbering vertices expects). On entry kept[v] is the copy of v's point in
+// the mesh; on return it is the lowest index of v's point.
+void keep_lowest_copies(Mesh& mesh, std::vector<VertexId>& kept) {
+  const std::size_t n = kept.size();
+  std::vector<VertexId> low(n);
+  for (VertexId v = 0; v < n; ++v) low[v] = v;
+  for (VertexId v = 0; v < n; ++v)
+    if (v < low[kept[v]]) low[kept[v]] = v;
+  std::vector<VertexId>& tv = mesh.tri_v_mut();
+  std::vector<HalfEdgeId>& ve = mesh.vert_edge_mut();
+  const std::vector<HalfEdgeId>& tw = mesh.twin_mut();
+  for (VertexId k = 0; k < n; ++k) {
+    if (kept[k] != k || low[k] == k) continue;
+    // Relabel k as its lowest copy around k's fan.
+    const HalfEdgeId start = ve[k];
+    HalfEdgeId e = start;
+    do {
+      tv[e] = low[k];
+      e = tw[prev_edge(e)];
+    } while (e != start);
+    ve[low[k]] = start;
+    ve[k] = kNone;
+  }
+  for (VertexId v = 0; v < n; ++v) kept[v] = low[kept[v]];
+}
 }  // namespace
 
 Mesh constrained_triangulation(const Pslg& pslg, const CdtOptions& options, CdtStats* stats) {
@@ -303,40 +391,29 @@ Mesh constrained_triangulation(const Pslg& pslg, const CdtOptions& options, CdtS
                        i);
   }
   auto t0 = Clock::now();
+  if (options.method == CdtMethod::Fast && !pslg.segments.empty() &&
+      (options.chain_order == ChainOrder::Always || (options.chain_order == ChainOrder::Auto && long_segments(pslg)))) {
+    Mesh mesh;
+    std::vector<VertexId> first_copy;
+    if (detail::chain_order_cdt(mesh, pslg, options, st, first_copy)) {
+      if (st.duplicate_vertices > 0) keep_lowest_copies(mesh, first_copy);
+      st.chain_order = true;
+      st.triangulate_seconds = seconds_since(t0);
+      return mesh;
+    }
+    st = CdtStats{};  // over budget: start over the classic way
+    st.chain_order_abandoned = true;
+  }
   DelaunayStats ds;
   DelaunayOptions dopt;
   dopt.keep_ghosts = true;
   Mesh mesh = delaunay(pslg.points, dopt, &ds);
   st.duplicate_vertices = ds.duplicates;
-  // Of equal points the Delaunay step keeps the first in its insertion
-  // order; keep the first in input order instead (deterministic, and what a
-  // user numbering vertices expects), and send segments to it.
   std::vector<VertexId> canonical;
   if (ds.duplicates > 0) {
     canonical.resize(n);
-    for (VertexId v = 0; v < n; ++v) canonical[v] = v;
-    for (VertexId v = 0; v < n; ++v) {
-      const VertexId k = ds.duplicate_of[v];
-      if (k != kNone && v < canonical[k]) canonical[k] = v;  // lowest copy of kept vertex k
-    }
-    std::vector<VertexId>& tv = mesh.tri_v_mut();
-    std::vector<HalfEdgeId>& ve = mesh.vert_edge_mut();
-    const std::vector<HalfEdgeId>& tw = mesh.twin_mut();
-    for (VertexId k = 0; k < n; ++k) {
-      const VertexId low = canonical[k];
-      if (ds.duplicate_of[k] != kNone || low == k) continue;
-      // Relabel k as its lowest copy around k's fan.
-      const HalfEdgeId start = ve[k];
-      HalfEdgeId e = start;
-      do {
-        tv[e] = low;
-        e = tw[prev_edge(e)];
-      } while (e != start);
-      ve[low] = start;
-      ve[k] = kNone;
-    }
-    for (VertexId v = 0; v < n; ++v)
-      if (ds.duplicate_of[v] != kNone) canonical[v] = canonical[ds.duplicate_of[v]];
+    for (VertexId v = 0; v < n; ++v) canonical[v] = ds.duplicate_of[v] == kNone ? v : ds.duplicate_of[v];
+    keep_lowest_copies(mesh, canonical);
   }
   st.triangulate_seconds = seconds_since(t0);
   if (pslg.segments.empty()) return mesh;
@@ -344,7 +421,7 @@ Mesh constrained_triangulation(const Pslg& pslg, const CdtOptions& options, CdtS
   t0 = Clock::now();
   {
     detail::CdtBuilder builder(mesh, pslg, options, st);
-    auto canon = [&](VertexId v) { return canonical.empty() ? v : canonical[v]; };
+    auto canon = [&](VertexId v) { return canonical.empty() ? v : canonical[v]; };  // first copy
     for (std::size_t i = 0; i < pslg.segments.size(); ++i) {
       const VertexId a = canon(pslg.segments[i].a), b = canon(pslg.segments[i].b);
       if (a == b) {

@@ -28,6 +28,18 @@ class CdtBuilder {
   // Indices -> markers; clears the marker array when every marker is 0.
   void finish();
 
+  // Inserts vertex v (in the mesh's points, in no triangle) by Delaunay
+  // insertion that keeps constrained edges, locating it by a walk from the
+  // triangle of half-edge `near`. Returns v, or the vertex it coincides with.
+  VertexId insert_vertex(VertexId v, HalfEdgeId near);
+  std::size_t vertex_flips() const { return inserter_.flips() + lean_flips_; }
+  // Triangle slots for insert_vertex to split into without Mesh::add_triangle
+  // (dead until used); release_slots() drops the unused ones at the end and
+  // recounts the mesh's live triangles.
+  void reserve_slots(std::size_t slots);
+  void release_slots();
+  std::size_t walk_steps() const { return walk_steps_; }
+
  private:
   struct Piece {
     VertexId a, b;
@@ -80,13 +92,23 @@ class CdtBuilder {
   std::vector<VertexId>& tv_;
   std::vector<HalfEdgeId>& tw_;
   std::vector<std::uint8_t>& flags_;
-  std::vector<int>& seg_of_;  // the mesh's marker array, holding segment indices for now
+  std::vector<int>& seg_of_;  // the mesh's marker array, holding segment indices for now (when ids_)
+  bool ids_ = false;
+  std::uint32_t seg_id(HalfEdgeId e) const { return ids_ ? static_cast<std::uint32_t>(seg_of_[e]) : 0; }
   std::vector<HalfEdgeId>& ve_;
   DelaunayInserter inserter_;
 
   std::vector<Piece> pieces_;
   std::vector<HalfEdgeId> crossings_;
   std::size_t steiner_ = 0;
+  std::size_t walk_steps_ = 0;
+  std::size_t lean_flips_ = 0;
+  std::size_t next_slot_ = 0, reserved_slots_ = 0;
+  std::vector<HalfEdgeId> legal_;
+  void split_and_legalize(TriId t, VertexId v);
+  double static_err_ = 0.0;  // see incircle_fast
+  double incircle_fast(const Point& a, const Point& b, const Point& c, const Point& d) const;
+  std::uint64_t rng_ = 0x9E3779B97F4A7C15ull;
   std::size_t max_steiner_ = 0;
   std::size_t piece_budget_ = 0;
 
@@ -115,5 +137,13 @@ class CdtBuilder {
   std::vector<std::uint32_t> cavity_stamp_;  // per triangle slot: == stamp_ when in the current cavity
   std::uint32_t stamp_ = 0;
 };
+
+// The Fast method's first attempt (cdt_chain.cpp): vertices inserted along
+// the segment chains, segments as soon as their endpoints are in. Fills
+// `mesh` and returns true, or returns false when the flip or walk budget is
+// exceeded (the caller starts over). first_copy[v] is the vertex that input
+// vertex v became (itself, or an earlier copy of its point).
+bool chain_order_cdt(Mesh& mesh, const Pslg& pslg, const CdtOptions& options, CdtStats& stats,
+                     std::vector<VertexId>& first_copy);
 
 }  // namespace deltamesh::detail

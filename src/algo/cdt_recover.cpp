@@ -208,10 +208,8 @@ void CdtBuilder::recover_fast(VertexId a, [[maybe_unused]] VertexId b, std::uint
       tv_[e] = u;
       tv_[e + 1] = v;
       tv_[e + 2] = vc;
-      for (int i = 0; i < 3; ++i) {
-        flags_[e + i] = 0;
-        seg_of_[e + i] = 0;
-      }
+      flags_[e] = flags_[e + 1] = flags_[e + 2] = 0;
+      if (ids_) seg_of_[e] = seg_of_[e + 1] = seg_of_[e + 2] = 0;
       if (j.parent == kNone) {
         top = e;
       } else {
@@ -222,7 +220,7 @@ void CdtBuilder::recover_fast(VertexId a, [[maybe_unused]] VertexId b, std::uint
         tw_[inner] = o;
         tw_[o] = inner;
         flags_[inner] = flags_[o];
-        seg_of_[inner] = seg_of_[o];
+        if (ids_) seg_of_[inner] = seg_of_[o];
       };
       if (c + 1 == j.hi)
         link_out(e + 1, out[c]);  // v -> c is the boundary edge c -> v
@@ -243,7 +241,7 @@ void CdtBuilder::recover_fast(VertexId a, [[maybe_unused]] VertexId b, std::uint
     // flags before the slots are rewritten).
     for (HalfEdgeId o : cut_edges_)
       if ((flags_[o] & kConstrained) && tv_[o] < tv_[next_edge(o)])  // each edge once
-        pieces_.push_back({tv_[o], tv_[next_edge(o)], static_cast<std::uint32_t>(seg_of_[o])});
+        pieces_.push_back({tv_[o], tv_[next_edge(o)], seg_id(o)});
   }
   const HalfEdgeId top_left = triangulate(left_, left_out_);
   const HalfEdgeId top_right = triangulate(right_, right_out_);

@@ -48,6 +48,28 @@ class DelaunayInserter {
     return {v, tri_of(mesh_.out_edge(v))};
   }
 
+  // Inserts vertex v (in mesh.points(), in no triangle) at a location the
+  // caller found: in triangle loc.tri, on edge loc.edge, or outside the hull
+  // beyond ghost triangle loc.tri. Returns v, or loc.vertex when on a vertex.
+  Result insert_located(const Location& loc, VertexId v) {
+    switch (loc.kind) {
+      case Location::Kind::OnVertex:
+        return {loc.vertex, loc.tri};
+      case Location::Kind::OnEdge:
+        insert_on_edge(loc.edge, v);
+        break;
+      case Location::Kind::InTriangle:
+      case Location::Kind::Outside:
+        insert_in_triangle(loc.tri, v);
+        break;
+    }
+    legalize(v);
+    return {v, tri_of(mesh_.out_edge(v))};
+  }
+
+  // Flips made by the insertions so far.
+  std::size_t flips() const { return flips_; }
+
   // Adds p as a new vertex (unless it coincides with one) and inserts it.
   Result insert_point(const Point& p, TriId hint) {
     const Location loc = mesh_.locate(p, hint);
@@ -103,6 +125,7 @@ class DelaunayInserter {
       if (!should_flip(e, v)) continue;
       const HalfEdgeId f = mesh_.twin(e);
       mesh_.flip(e);
+      ++flips_;
       // Slots keep their ids: e's triangle is now (v, a, d), f's is (d, b, v).
       stack_.push_back(next_edge(e));
       stack_.push_back(f);
@@ -111,6 +134,7 @@ class DelaunayInserter {
 
   Mesh& mesh_;
   std::vector<HalfEdgeId> stack_;
+  std::size_t flips_ = 0;
 };
 
 }  // namespace deltamesh::detail

@@ -1,0 +1,461 @@
+// The Fast method's first attempt: vertices inserted along the segment chains
+// (a polygon's vertices in polygon order), each segment inserted as soon as
+// both its endpoints are in.
+//
+// Inserted this way, a segment usually joins two vertices the triangulation
+// has only just reached, and is an edge already or crosses few edges: on a
+// star-shaped polygon the classic order (Delaunay of all vertices, then the
+// segments) recovers ten times more crossed edges. The order has a bad case
+// of its own: points along a convex curve, each inserted next to the last,
+// make Lawson flips sweep the whole triangulation (quadratic), and chains that
+// jump around make point location walk far. So the attempt runs on a budget
+// of flips and walk steps proportional to the vertices inserted, and gives up
+// (the caller starts over the classic way) when it is exceeded.
+#include <algorithm>
+#include <span>
+#include <string>
+
+#include "algo/cdt_builder.hpp"
+#include "core/spatial_sort.hpp"
+#include "deltamesh/errors.hpp"
+#include "deltamesh/predicates.hpp"
+
+namespace deltamesh::detail {
+
+namespace {
+
+inline std::uint32_t xorshift(std::uint64_t& s) {
+  s ^= s << 13;
+  s ^= s >> 7;
+  s ^= s << 17;
+  return static_cast<std::uint32_t>(s >> 32);
+}
+
+// The vertices of `pslg` in insertion order: depth-first along the segments
+// (a chain in chain order, a polygon in polygon order), components ordered
+// along a Hilbert curve by their first vertex, then the vertices on no
+// segment along the Hilbert curve.
+std::vector<VertexId> chain_order(const Pslg& pslg) {
+  const std::size_t n = pslg.points.size();
+  std::vector<std::uint32_t> start(n + 1, 0);
+  for (const Segment& s : pslg.segments)
+    if (s.a != s.b) {
+      ++start[s.a + 1];
+      ++start[s.b + 1];
+    }
+  for (std::size_t v = 0; v < n; ++v) start[v + 1] += start[v];
+  std::vector<VertexId> adj(start[n]);
+  {
+    std::vector<std::uint32_t> fill(start.begin(), start.end() - 1);
+    for (const Segment& s : pslg.segments)
+      if (s.a != s.b) {
+        adj[fill[s.a]++] = s.b;
+        adj[fill[s.b]++] = s.a;
+      }
+  }
+  // Component starts: a chain's end (degree 1) when there is one. Components
+  // and vertices on no segment go along a Hilbert curve, unless there is
+  // only one component covering everything (a polygon).
+  std::vector<VertexId> hilbert;
+  {
+    bool single = true;
+    for (std::size_t v = 0; v < n && single; ++v) single = start[v + 1] - start[v] == 2;
+    if (single && n > 0) {
+      // Every vertex has two segments: one cycle if the walk from 0 sees all.
+      std::size_t len = 1;
+      VertexId prev = 0, cur = adj[start[0]];
+      while (cur != 0 && len <= n) {
+        const VertexId next = adj[start[cur]] == prev ? adj[start[cur] + 1] : adj[start[cur]];
+        prev = cur;
+        cur = next;
+        ++len;
+      }
+      single = cur == 0 && len == n;
+    }
+    if (single) {
+      hilbert.push_back(0);  // only the root matters
+    } else {
+      hilbert = hilbert_order(pslg.points);
+    }
+  }
+  std::vector<char> seen(n, 0);
+  std::vector<VertexId> roots;
+  {
+    std::vector<char> in_comp(n, 0);
+    std::vector<VertexId> stack;
+    for (VertexId s : hilbert) {
+      if (in_comp[s] || start[s] == start[s + 1]) continue;
+      VertexId root = s;
+      stack.push_back(s);
+      in_comp[s] = 1;
+      while (!stack.empty()) {
+        const VertexId u = stack.back();
+        stack.pop_back();
+        if (start[u + 1] - start[u] == 1 && (start[root + 1] - start[root] != 1)) root = u;
+        for (std::uint32_t k = start[u]; k < start[u + 1]; ++k)
+          if (!in_comp[adj[k]]) {
+            in_comp[adj[k]] = 1;
+            stack.push_back(adj[k]);
+          }
+      }
+      roots.push_back(root);
+    }
+  }
+  std::vector<VertexId> order;
+  order.reserve(n);
+  std::vector<std::pair<VertexId, std::uint32_t>> dfs;  // vertex, next adjacency slot
+  for (VertexId root : roots) {
+    seen[root] = 1;
+    order.push_back(root);
+    dfs.push_back({root, start[root]});
+    while (!dfs.empty()) {
+      auto& [u, k] = dfs.back();
+      while (k < start[u + 1] && seen[adj[k]]) ++k;
+      if (k == start[u + 1]) {
+        dfs.pop_back();
+        continue;
+      }
+      const VertexId w = adj[k++];
+      seen[w] = 1;
+      order.push_back(w);
+      dfs.push_back({w, start[w]});
+    }
+  }
+  for (VertexId v : hilbert)
+    if (!seen[v]) order.push_back(v);
+  return order;
+}
+
+}  // namespace
+
+VertexId CdtBuilder::insert_vertex(VertexId v, HalfEdgeId near) {
+  const VertexId* const tv_ = this->tv_.data();
+  const HalfEdgeId* const tw_ = this->tw_.data();
+  const Point* const pts_ = this->pts_.data();
+  const std::size_t limit = this->tv_.size() + 16;
+  const Point p = pts_[v];
+  TriId t = tri_of(near);
+  auto ghost = [&](TriId u) {
+    return tv_[3 * u] == kInfinite || tv_[3 * u + 1] == kInfinite || tv_[3 * u + 2] == kInfinite;
+  };
+  if (ghost(t)) {  // step to the real triangle across the ghost's hull edge
+    for (int i = 0; i < 3; ++i) {
+      const HalfEdgeId e = 3 * t + i;
+      if (tv_[e] != kInfinite && tv_[next_edge(e)] != kInfinite) {
+        t = tri_of(tw_[e]);
+        break;
+      }
+    }
+  }
+  // Visibility walk; the edge entered by is skipped (p is strictly beyond
+  // it), the other two are tried in random order, which cannot cycle.
+  Location loc;
+  HalfEdgeId from = kNone;
+  for (std::size_t steps = 0;; ++steps) {
+    if (steps > limit) throw InputError("internal error: point location does not end");
+    ++walk_steps_;
+    const HalfEdgeId base = 3 * t;
+    HalfEdgeId cand[3];
+    int nc = 0;
+    const std::uint32_t r = xorshift(rng_);
+    if (from == kNone) {
+      for (int i = 0; i < 3; ++i) cand[nc++] = base + (r + i) % 3;
+    } else {
+      const HalfEdgeId e1 = next_edge(from), e2 = prev_edge(from);
+      cand[nc++] = (r & 1) ? e1 : e2;
+      cand[nc++] = (r & 1) ? e2 : e1;
+    }
+    HalfEdgeId exit = kNone, zero = kNone;
+    int zeros = 0;
+    for (int i = 0; i < nc; ++i) {
+      const HalfEdgeId e = cand[i];
+      const double o = orient2d(pts_[tv_[e]], pts_[tv_[next_edge(e)]], p);
+      if (o < 0) {
+        exit = e;
+        break;
+      }
+      if (o == 0) {
+        ++zeros;
+        zero = e;
+      }
+    }
+    if (exit == kNone) {
+      loc.tri = t;
+      if (zeros == 0) {
+        loc.kind = Location::Kind::InTriangle;
+      } else if (zeros == 1) {
+        loc.kind = Location::Kind::OnEdge;
+        loc.edge = zero;
+      } else {
+        loc.kind = Location::Kind::OnVertex;
+        for (int i = 0; i < 3; ++i)
+          if (pts_[tv_[base + i]] == p) loc.vertex = tv_[base + i];
+        if (loc.vertex == kNone) throw InputError("internal error: point location met a degenerate triangle");
+      }
+      break;
+    }
+    const HalfEdgeId g = tw_[exit];
+    if (ghost(tri_of(g))) {
+      loc.kind = Location::Kind::Outside;
+      loc.tri = tri_of(g);
+      break;
+    }
+    from = g;
+    t = tri_of(g);
+  }
+  if (loc.kind == Location::Kind::OnEdge && (flags_[loc.edge] & kConstrained))
+    ++st_.vertices_on_segments;  // a vertex exactly on a segment inserted already splits it
+  if ((loc.kind == Location::Kind::InTriangle || loc.kind == Location::Kind::Outside) &&
+      next_slot_ + 2 <= reserved_slots_) {
+    split_and_legalize(loc.tri, v);
+    return v;
+  }
+  return inserter_.insert_located(loc, v).vertex;
+}
+
+// incircle() with a static filter first: every coordinate difference is at
+// most box_ (the input's bounding box extent, rounded up), so the permanent
+// incircle's filter compares with is at most 12 box_^4 and its error bound
+// at most static_err_; a determinant beyond that needs no permanent.
+double CdtBuilder::incircle_fast(const Point& a, const Point& b, const Point& c, const Point& d) const {
+  const double adx = a.x - d.x, bdx = b.x - d.x, cdx = c.x - d.x;
+  const double ady = a.y - d.y, bdy = b.y - d.y, cdy = c.y - d.y;
+  const double det = (adx * adx + ady * ady) * (bdx * cdy - cdx * bdy) +
+                     (bdx * bdx + bdy * bdy) * (cdx * ady - adx * cdy) +
+                     (cdx * cdx + cdy * cdy) * (adx * bdy - bdx * ady);
+  if (det > static_err_ || -det > static_err_) return det;
+  return incircle(a, b, c, d);
+}
+
+void CdtBuilder::reserve_slots(std::size_t slots) {
+  next_slot_ = mesh_.num_triangle_slots();
+  reserved_slots_ = next_slot_ + slots;
+  tv_.resize(3 * reserved_slots_, kNone);  // dead until used
+  tw_.resize(3 * reserved_slots_, kNone);
+  flags_.resize(3 * reserved_slots_, 0);
+  if (ids_) seg_of_.resize(3 * reserved_slots_, 0);
+}
+
+void CdtBuilder::release_slots() {
+  // Unused reserved slots go when nothing was added after them (else they
+  // stay, dead).
+  if (tv_.size() / 3 == reserved_slots_) {
+    tv_.resize(3 * next_slot_);
+    tw_.resize(3 * next_slot_);
+    flags_.resize(3 * next_slot_);
+    if (ids_) seg_of_.resize(3 * next_slot_);
+  }
+  reserved_slots_ = next_slot_ = 0;
+  mesh_.recount();
+}
+
+// Triangle t = (a, b, c), or a ghost, split at v into (a, b, v) in t and
+// (b, c, v), (c, a, v) in two reserved slots; then Lawson flips that keep
+// constrained edges. The same steps as Mesh::split_triangle and
+// DelaunayInserter, on the raw arrays (this loop is the chain order's cost).
+void CdtBuilder::split_and_legalize(TriId t, VertexId v) {
+  // Raw pointers: nothing here reallocates the arrays.
+  VertexId* const tv_ = this->tv_.data();
+  HalfEdgeId* const tw_ = this->tw_.data();
+  std::uint8_t* const flags_ = this->flags_.data();
+  int* const seg_of_ = this->seg_of_.data();
+  HalfEdgeId* const ve_ = this->ve_.data();
+  const Point* const pts_ = this->pts_.data();
+  const HalfEdgeId e0 = 3 * t, e1 = e0 + 1, e2 = e0 + 2;
+  const VertexId a = tv_[e0], b = tv_[e1], c = tv_[e2];
+  const HalfEdgeId tw_bc = tw_[e1], tw_ca = tw_[e2];
+  const TriId t1 = static_cast<TriId>(next_slot_++), t2 = static_cast<TriId>(next_slot_++);
+  const HalfEdgeId g0 = 3 * t1, h0 = 3 * t2;
+  tv_[g0] = b;
+  tv_[g0 + 1] = c;
+  tv_[g0 + 2] = v;
+  tv_[h0] = c;
+  tv_[h0 + 1] = a;
+  tv_[h0 + 2] = v;
+  tv_[e2] = v;
+  tw_[g0] = tw_bc;
+  tw_[tw_bc] = g0;
+  tw_[h0] = tw_ca;
+  tw_[tw_ca] = h0;
+  tw_[e1] = g0 + 2;
+  tw_[g0 + 2] = e1;
+  tw_[g0 + 1] = h0 + 2;
+  tw_[h0 + 2] = g0 + 1;
+  tw_[h0 + 1] = e2;
+  tw_[e2] = h0 + 1;
+  flags_[g0] = flags_[e1];
+  flags_[h0] = flags_[e2];
+  flags_[e1] = flags_[e2] = flags_[g0 + 1] = flags_[g0 + 2] = flags_[h0 + 1] = flags_[h0 + 2] = 0;
+  if (ids_) {
+    seg_of_[g0] = seg_of_[e1];
+    seg_of_[h0] = seg_of_[e2];
+    seg_of_[e1] = seg_of_[e2] = seg_of_[g0 + 1] = seg_of_[g0 + 2] = seg_of_[h0 + 1] = seg_of_[h0 + 2] = 0;
+  }
+  if (b != kInfinite && ve_[b] == e1) ve_[b] = g0;
+  if (c != kInfinite && ve_[c] == e2) ve_[c] = h0;
+  ve_[v] = e2;
+
+  // Lawson flips: every edge on the stack is opposite v.
+  const Point p = pts_[v];
+  legal_.clear();
+  legal_.push_back(e0);
+  legal_.push_back(g0);
+  legal_.push_back(h0);
+  while (!legal_.empty()) {
+    const HalfEdgeId e = legal_.back();
+    legal_.pop_back();
+    if (flags_[e] & kConstrained) continue;
+    const HalfEdgeId f = tw_[e];
+    const HalfEdgeId f2 = prev_edge(f);
+    const VertexId x = tv_[e], y = tv_[next_edge(e)], d = tv_[f2];
+    bool flip;
+    if (d == kInfinite)
+      flip = false;
+    else if (y == kInfinite)
+      flip = orient2d(pts_[x], pts_[d], p) > 0;
+    else if (x == kInfinite)
+      flip = orient2d(pts_[d], pts_[y], p) > 0;
+    else
+      flip = incircle_fast(pts_[x], pts_[y], p, pts_[d]) > 0;
+    if (!flip) continue;
+    // e = x->y in (x, y, v), f = y->x in (y, x, d): becomes (v, x, d) and (d, y, v).
+    const HalfEdgeId e1f = next_edge(e), e2f = prev_edge(e), f1 = next_edge(f);
+    const HalfEdgeId tw_yv = tw_[e1f], tw_vx = tw_[e2f], tw_xd = tw_[f1], tw_dy = tw_[f2];
+    tv_[e] = v;
+    tv_[e1f] = x;
+    tv_[e2f] = d;
+    tv_[f] = d;
+    tv_[f1] = y;
+    tv_[f2] = v;
+    tw_[e] = tw_vx;
+    tw_[tw_vx] = e;
+    tw_[e1f] = tw_xd;
+    tw_[tw_xd] = e1f;
+    tw_[f] = tw_dy;
+    tw_[tw_dy] = f;
+    tw_[f1] = tw_yv;
+    tw_[tw_yv] = f1;
+    tw_[e2f] = f2;
+    tw_[f2] = e2f;
+    const std::uint8_t fl_yv = flags_[e1f], fl_vx = flags_[e2f], fl_xd = flags_[f1], fl_dy = flags_[f2];
+    flags_[e] = fl_vx;
+    flags_[e1f] = fl_xd;
+    flags_[e2f] = 0;
+    flags_[f] = fl_dy;
+    flags_[f1] = fl_yv;
+    flags_[f2] = 0;
+    if (ids_) {
+      const int m_yv = seg_of_[e1f], m_vx = seg_of_[e2f], m_xd = seg_of_[f1], m_dy = seg_of_[f2];
+      seg_of_[e] = m_vx;
+      seg_of_[e1f] = m_xd;
+      seg_of_[e2f] = 0;
+      seg_of_[f] = m_dy;
+      seg_of_[f1] = m_yv;
+      seg_of_[f2] = 0;
+    }
+    if (x != kInfinite && (ve_[x] == e || ve_[x] == f1)) ve_[x] = e1f;
+    if (y != kInfinite && (ve_[y] == e1f || ve_[y] == f)) ve_[y] = f1;
+    if (ve_[v] == e2f) ve_[v] = e;
+    if (d != kInfinite && ve_[d] == f2) ve_[d] = f;
+    ++lean_flips_;
+    legal_.push_back(e1f);  // x -> d
+    legal_.push_back(f);    // d -> y
+  }
+}
+
+bool chain_order_cdt(Mesh& mesh, const Pslg& pslg, const CdtOptions& options, CdtStats& st,
+                     std::vector<VertexId>& first_copy) {
+  const std::size_t n = pslg.points.size();
+  check_coordinates(pslg.points);
+  const std::vector<VertexId> order = chain_order(pslg);
+  const std::vector<Point>& pts = pslg.points;
+  // The first triangle: the first vertex, the next distinct one, the next one off their line.
+  std::size_t i1 = 1;
+  while (i1 < n && pts[order[i1]] == pts[order[0]]) ++i1;
+  std::size_t i2 = i1 + 1;
+  while (i2 < n && orient2d(pts[order[0]], pts[order[i1]], pts[order[i2]]) == 0) ++i2;
+  if (i2 >= n) return false;  // the classic path reports it
+
+  mesh = Mesh();
+  mesh.points_mut().assign(pts.begin(), pts.end());
+  mesh.vert_edge_mut().assign(n, kNone);
+  mesh.reserve(n, 2 * n + 2);
+  mesh.edge_flags_mut().reserve(6 * n + 6);
+  mesh.edge_markers_mut().reserve(6 * n + 6);
+  VertexId v0 = order[0], v1 = order[i1], v2 = order[i2];
+  if (orient2d(pts[v0], pts[v1], pts[v2]) < 0) std::swap(v1, v2);
+  {
+    const TriId t = mesh.add_triangle(v0, v1, v2);
+    const VertexId v[3] = {v0, v1, v2};
+    TriId g[3];
+    for (int i = 0; i < 3; ++i) g[i] = mesh.add_triangle(v[(i + 1) % 3], v[i], kInfinite);
+    for (int i = 0; i < 3; ++i) {
+      mesh.link(3 * t + i, 3 * g[i]);
+      mesh.link(3 * g[i] + 1, 3 * g[(i + 2) % 3] + 2);
+      mesh.set_out_edge(v[i], 3 * t + i);
+    }
+  }
+  mesh.recount();
+
+  // Segments by vertex.
+  std::vector<std::uint32_t> start(n + 1, 0);
+  for (const Segment& s : pslg.segments)
+    if (s.a != s.b) {
+      ++start[s.a + 1];
+      ++start[s.b + 1];
+    } else {
+      ++st.zero_length_segments;
+    }
+  for (std::size_t v = 0; v < n; ++v) start[v + 1] += start[v];
+  std::vector<std::uint32_t> inc(start[n]);
+  {
+    std::vector<std::uint32_t> fill(start.begin(), start.end() - 1);
+    for (std::uint32_t i = 0; i < pslg.segments.size(); ++i) {
+      const Segment& s = pslg.segments[i];
+      if (s.a == s.b) continue;
+      inc[fill[s.a]++] = i;
+      inc[fill[s.b]++] = i;
+    }
+  }
+
+  first_copy.assign(n, kNone);
+  CdtBuilder builder(mesh, pslg, options, st);
+  builder.reserve_slots(2 * n);  // a triangulation of n vertices with ghosts has 2n - 4 triangles
+  // Inserts the segments of v whose other end is in already.
+  auto ready = [&](VertexId v) {
+    for (std::uint32_t k = start[v]; k < start[v + 1]; ++k) {
+      const Segment& s = pslg.segments[inc[k]];
+      const VertexId w = s.a == v ? s.b : s.a;
+      if (first_copy[w] == kNone) continue;
+      const VertexId a = first_copy[v], b = first_copy[w];
+      if (a == b) {
+        ++st.zero_length_segments;
+        continue;
+      }
+      ++st.segments_inserted;
+      builder.insert_segment(a, b, inc[k]);
+    }
+  };
+  for (VertexId v : {v0, v1, v2}) {
+    first_copy[v] = v;
+    ready(v);
+  }
+  HalfEdgeId near = mesh.out_edge(v0);
+  std::size_t inserted = 3;
+  for (std::size_t k = 1; k < n; ++k) {
+    const VertexId v = order[k];
+    if (first_copy[v] != kNone) continue;  // v1, v2
+    const VertexId got = builder.insert_vertex(v, near);
+    first_copy[v] = got;
+    if (got != v) ++st.duplicate_vertices;
+    near = mesh.out_edge(got);
+    ready(v);
+    ++inserted;
+    if (builder.vertex_flips() > 12 * inserted + 4096 || builder.walk_steps() > 24 * inserted + 4096) return false;
+  }
+  builder.release_slots();
+  builder.finish();
+  return true;
+}
+
+}  // namespace deltamesh::detail
