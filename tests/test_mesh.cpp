@@ -190,3 +190,30 @@ TEST(Mesh, MarkersFollowEdgesThroughFlipsAndSplits) {
   EXPECT_EQ(m.edge_marker(m.find_edge(1, 2)), 9);
   EXPECT_TRUE(check(m, no_delaunay()).ok()) << check(m, no_delaunay()).summary();
 }
+
+TEST(Mesh, ValidatorAcceptsAPinchVertexWithOneFanPerBoundaryEdge) {
+  // Two triangles meeting only at vertex 0 (as where two holes touch).
+  Mesh m;
+  m.add_vertex({0, 0});
+  m.add_vertex({1, -1});
+  m.add_vertex({1, 1});
+  m.add_vertex({-1, 1});
+  m.add_vertex({-1, -1});
+  m.add_triangle(0, 1, 2);
+  m.add_triangle(0, 3, 4);
+  m.compact();
+  CheckOptions o;
+  o.convex_hull = false;
+  const CheckReport r = check(m, o);
+  EXPECT_TRUE(r.ok()) << r.summary();
+  // A third triangle overlapping the first one's fan is still caught.
+  Mesh bad;
+  bad.add_vertex({0, 0});
+  bad.add_vertex({1, -1});
+  bad.add_vertex({1, 1});
+  bad.add_vertex({2, 0.5});
+  bad.add_triangle(0, 1, 2);
+  bad.add_triangle(0, 1, 3);
+  bad.compact();
+  EXPECT_FALSE(check(bad, o).ok());
+}

@@ -108,12 +108,67 @@ class Checker {
     }
   }
 
+  // Real triangles met rotating counter-clockwise from e until a boundary
+  // (or back at e); `closed` tells which.
+  std::uint32_t fan_size(HalfEdgeId e, std::uint32_t limit, bool& closed) const {
+    std::uint32_t seen = 0;
+    closed = true;
+    HalfEdgeId g = e;
+    do {
+      if (mesh_.is_real(tri_of(g))) ++seen;
+      else closed = false;
+      g = mesh_.rotate_ccw(g);
+    } while (g != kNone && g != e && seen <= limit);
+    if (g == kNone) closed = false;
+    return seen;
+  }
+
+  // Each fan at a pinch vertex starts along a boundary edge; the direction
+  // just counter-clockwise of it must lie in exactly one triangle around v
+  // (half-open angular cones, decided by exact orientations).
+  bool pinch_fans_disjoint(VertexId v, HalfEdgeId first, const std::vector<HalfEdgeId>& next_out) const {
+    std::vector<HalfEdgeId> around;  // one half-edge out of v per triangle
+    for (HalfEdgeId b = first; b != kNone; b = next_out[b]) {
+      HalfEdgeId g = b;
+      do {
+        if (mesh_.is_real(tri_of(g))) around.push_back(g);
+        g = mesh_.rotate_ccw(g);
+      } while (g != kNone && g != b && around.size() <= mesh_.num_triangle_slots());
+    }
+    const Point& pv = mesh_.point(v);
+    for (HalfEdgeId b = first; b != kNone; b = next_out[b]) {
+      const Point& d = mesh_.point(mesh_.dest(b));
+      int cover = 0;
+      for (const HalfEdgeId g : around) {
+        const Point& x = mesh_.point(mesh_.dest(g));
+        const Point& y = mesh_.point(mesh_.origin(prev_edge(g)));
+        if (orient2d(pv, x, d) >= 0 && orient2d(pv, d, y) > 0) ++cover;
+      }
+      if (cover != 1) return false;
+    }
+    return true;
+  }
+
   void check_vertex_edges() {
     const std::size_t nv = mesh_.num_vertices();
     std::vector<std::uint32_t> incident(nv, 0);
     for (TriId t = 0; t < mesh_.num_triangle_slots(); ++t) {
       if (!mesh_.is_real(t)) continue;
       for (VertexId v : mesh_.triangle(t)) ++incident[v];
+    }
+    // Boundary out-edges per vertex: a carved mesh may pinch at a vertex
+    // (two holes touching there), which then has one fan per boundary edge.
+    std::vector<HalfEdgeId> first_boundary(nv, kNone), next_boundary_out;
+    next_boundary_out.assign(mesh_.triangle_vertices().size(), kNone);
+    for (TriId t = 0; t < mesh_.num_triangle_slots(); ++t) {
+      if (!mesh_.is_real(t)) continue;
+      for (int i = 0; i < 3; ++i) {
+        const HalfEdgeId e = 3 * t + i;
+        if (!on_boundary(e)) continue;
+        const VertexId v = mesh_.origin(e);
+        next_boundary_out[e] = first_boundary[v];
+        first_boundary[v] = e;
+      }
     }
     for (VertexId v = 0; v < nv; ++v) {
       const HalfEdgeId e = mesh_.out_edge(v);
@@ -132,29 +187,40 @@ class Checker {
         problem("out-edge ", e, " of vertex ", v, " starts at ", mesh_.origin(e));
         continue;
       }
-      // Rotary traversal must meet every real triangle around v once.
-      std::uint32_t seen = 0, wraps = 0;
-      bool closed_fan = true;
+      // Rotary traversal from the out-edge must meet every real triangle
+      // around v once, or, at a pinch vertex, the fans from each of its
+      // boundary out-edges together must.
+      bool closed_fan;
+      const std::uint32_t seen = fan_size(e, incident[v], closed_fan);
+      if (seen != incident[v]) {
+        std::uint32_t fans = 0, total = 0;
+        for (HalfEdgeId b = first_boundary[v]; b != kNone; b = next_boundary_out[b]) {
+          bool closed;
+          ++fans;
+          total += fan_size(b, incident[v], closed);
+        }
+        if (fans < 2 || total != incident[v]) {
+          problem("rotation around vertex ", v, " meets ", seen, " of its ", incident[v], " triangles");
+        } else if (!pinch_fans_disjoint(v, first_boundary[v], next_boundary_out)) {
+          problem("the fans of triangles at vertex ", v, " overlap");
+        } else {
+          extra_fans_ += fans - 1;
+        }
+        continue;
+      }
+      if (!closed_fan) continue;
+      // The triangles of a closed fan cover the direction +x exactly once
+      // around an interior vertex; y comparisons decide it exactly.
       const Point& pv = mesh_.point(v);
+      std::uint32_t wraps = 0;
       HalfEdgeId g = e;
       do {
-        if (mesh_.is_real(tri_of(g))) {
-          ++seen;
-          // The fan's triangles cover the direction +x exactly once around an
-          // interior vertex; y comparisons decide it exactly.
-          const Point& a = mesh_.point(mesh_.dest(g));
-          const Point& b = mesh_.point(mesh_.origin(prev_edge(g)));
-          if (a.y <= pv.y && b.y > pv.y) ++wraps;
-        } else {
-          closed_fan = false;
-        }
+        const Point& a = mesh_.point(mesh_.dest(g));
+        const Point& b = mesh_.point(mesh_.origin(prev_edge(g)));
+        if (a.y <= pv.y && b.y > pv.y) ++wraps;
         g = mesh_.rotate_ccw(g);
-      } while (g != kNone && g != e && seen <= incident[v]);
-      if (g == kNone) closed_fan = false;
-      if (seen != incident[v])
-        problem("rotation around vertex ", v, " meets ", seen, " of its ", incident[v], " triangles");
-      else if (closed_fan && wraps != 1)
-        problem("the triangles around vertex ", v, " wind ", wraps, " times around it (overlap)");
+      } while (g != e);
+      if (wraps != 1) problem("the triangles around vertex ", v, " wind ", wraps, " times around it (overlap)");
     }
   }
 
@@ -251,7 +317,8 @@ class Checker {
         }
       }
     }
-    const long long chi = static_cast<long long>(rep_.vertices_used) - static_cast<long long>(edges) +
+    // A pinch vertex counts once per fan: the surface is a disc per fan there.
+    const long long chi = static_cast<long long>(rep_.vertices_used + extra_fans_) - static_cast<long long>(edges) +
                           static_cast<long long>(rep_.triangles);
     const long long expected = 2 * static_cast<long long>(components) - static_cast<long long>(loops);
     if (chi != expected)
@@ -370,6 +437,7 @@ class Checker {
     return false;
   }
 
+  std::size_t extra_fans_ = 0;  // fans beyond the first at pinch vertices
   const Mesh& mesh_;
   const CheckOptions& opt_;
   CheckReport& rep_;
