@@ -190,6 +190,100 @@ TEST_F(Cli, VoronoiOffAndOutputByExtension) {
   EXPECT_CONTAINS(r.err, "points.xyz");
 }
 
+TEST_F(Cli, OutputWritesOnlyTheNamedFiles) {
+  data("square_hole.poly");
+  Result r = run("-pq --output=sq.msh --msh-version=2.2 --output sq.vtu --vtu-binary square_hole");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(listing(), (std::vector<std::string>{"sq.msh", "sq.vtu", "square_hole.poly"}));
+  EXPECT_EQ(slurp(path("sq.msh")).rfind("$MeshFormat\n2.2 0 8", 0), 0u) << slurp(path("sq.msh")).substr(0, 40);
+  EXPECT_CONTAINS(slurp(path("sq.vtu")), "binary");
+  r = run("-p --output=sq4.msh square_hole");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(slurp(path("sq4.msh")).rfind("$MeshFormat\n4.1 0 8", 0), 0u);
+  r = run("-p --msh-version=3 --output=x.msh square_hole");
+  EXPECT_EQ(r.code, 1);
+  EXPECT_CONTAINS(r.err, "--msh-version");
+  // Voronoi overlay and segment lines in the GeoJSON output.
+  r = run("-pq --voronoi-overlay --geojson-segments --output=sq.geojson --output=sq.svg square_hole");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const std::string gj = slurp(path("sq.geojson"));
+  EXPECT_CONTAINS(gj, "voronoi_cell");
+  EXPECT_CONTAINS(gj, "LineString");
+  EXPECT_FALSE(exists("square_hole.1.node"));
+}
+
+TEST_F(Cli, UnknownOutputExtensionWritesNothing) {
+  data("square_hole.poly");
+  const Result r = run("-p --output=good.msh --output=bad.xyz square_hole");
+  EXPECT_EQ(r.code, 1);
+  EXPECT_CONTAINS(r.err, "bad.xyz");
+  EXPECT_EQ(listing(), (std::vector<std::string>{"square_hole.poly"}));
+}
+
+TEST_F(Cli, GeoJsonInput) {
+  // A square with a square hole (named "a") beside a triangle (named "b").
+  write("map.geojson", R"({"type": "FeatureCollection", "features": [
+    {"type": "Feature", "properties": {"name": "a", "maxa": 0.5},
+     "geometry": {"type": "Polygon", "coordinates": [[[0,0],[4,0],[4,4],[0,4],[0,0]],
+                                                      [[1,1],[1,3],[3,3],[3,1],[1,1]]]}},
+    {"type": "Feature", "properties": {"name": "b"},
+     "geometry": {"type": "Polygon", "coordinates": [[[4,0],[6,0],[4,4],[4,0]]]}},
+    {"type": "Feature", "properties": {}, "geometry": {"type": "Point", "coordinates": [9,9]}}]})");
+  Result r = run("-V map.geojson");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(listing(), (std::vector<std::string>{"map.1.ele", "map.1.node", "map.1.poly", "map.geojson"}));
+  EXPECT_CONTAINS(r.out, "GeoJSON: 3 features, 2 polygons, 3 rings (1 hole)");
+  EXPECT_CONTAINS(r.out, "1 other geometry skipped");
+  // 9 vertices (the shared border's two merged); the hole is removed
+  // (even-odd): 8 triangles around it and the adjacent triangle.
+  const auto ele = table(path("map.1.ele"));
+  const auto node = table(path("map.1.node"));
+  EXPECT_EQ(node[0][0], "9");
+  EXPECT_EQ(ele[0][0], "9");
+  // Regional attributes from a string property: a=1, b=2.
+  r = run("-V --region-property=name --area-property maxa -qa map.geojson");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_CONTAINS(r.out, "categories: 1=a 2=b");
+  const auto ele2 = table(path("map.1.ele"));
+  ASSERT_GE(ele2[0].size(), 3u);
+  EXPECT_EQ(ele2[0][2], "1");  // one attribute per triangle
+  bool saw1 = false, saw2 = false;
+  for (std::size_t i = 1; i < ele2.size(); ++i) {
+    saw1 |= ele2[i].back() == "1";
+    saw2 |= ele2[i].back() == "2";
+  }
+  EXPECT_TRUE(saw1);
+  EXPECT_TRUE(saw2);
+  r = run("--output=map.vtu map.json");
+  EXPECT_EQ(r.code, 2);  // no such file
+  r = run("-r map.geojson");
+  EXPECT_EQ(r.code, 1);
+}
+
+TEST_F(Cli, AlgorithmChoicesAreAcceptedWithANote) {
+  data("points.node");
+  Result r = run("-iFlXsV points.node");
+  ASSERT_EQ(r.code, 0) << r.err;
+  for (const char* n : {"Note: -i", "Note: -F", "Note: -l", "Note: -X", "Note: -s"}) EXPECT_CONTAINS(r.out, n);
+  r = run("-iFlQ points.node");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_TRUE(r.out.empty()) << r.out;
+  r = run("--incremental --sweepline --vertical-cuts --no-exact -Q points.node");
+  EXPECT_EQ(r.code, 0) << r.err;
+}
+
+TEST_F(Cli, LongOptionsForSwitches) {
+  data("square_hole.poly");
+  const Result r = run("--poly --min-angle=30.5 --max-area=0.01 --zero-based --quiet square_hole");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_TRUE(r.out.empty());
+  const auto node = table(path("square_hole.1.node"));
+  EXPECT_EQ(node[1][0], "0");
+  const Result s = run("-pq30.5a0.01zQ square_hole");
+  ASSERT_EQ(s.code, 0) << s.err;
+  EXPECT_EQ(table(path("square_hole.1.node")), node);  // the same mesh
+}
+
 // ---------------------------------------------------------------------------
 // -p and the domain switches
 

@@ -5,6 +5,7 @@
 #include <exception>
 #include <filesystem>
 #include <new>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -36,6 +37,9 @@ bool ends_with(const std::string& s, const std::string& suffix) {
   return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
 }
 
+// An input named FILE.geojson or FILE.json is read as GeoJSON.
+bool is_geojson_input(const std::string& path) { return ends_with(path, ".geojson") || ends_with(path, ".json"); }
+
 // FILE.node -> FILE; FILE.3.node -> FILE with iteration 3.
 struct InputName {
   std::string base;
@@ -44,7 +48,7 @@ struct InputName {
 };
 
 InputName split_input_name(std::string path) {
-  for (const char* ext : {".node", ".poly", ".ele", ".area"})
+  for (const char* ext : {".node", ".poly", ".ele", ".area", ".geojson", ".json"})
     if (ends_with(path, ext)) {
       path.resize(path.size() - std::string(ext).size());
       break;
@@ -77,7 +81,7 @@ void require_file(const std::string& path) {
 
 class Run {
  public:
-  explicit Run(const Options& o) : opt_(o) {}
+  explicit Run(const Options& o) : opt_(o), geojson_(is_geojson_input(o.input)), poly_(o.poly || geojson_) {}
 
   int execute() {
     const InputName name = split_input_name(opt_.input);
@@ -100,39 +104,52 @@ class Run {
       }
       if (refining()) {
         auto t = Clock::now();
-        refine_stats_ = dm::refine(mesh, refine_options());
+        dm::RefineOptions ropt = refine_options();
+        ropt.progress = progress_callback();
+        refine_stats_ = dm::refine(mesh, ropt);
+        progress_.clear();
         dm::finish_vertex_markers(mesh);
         refined_ = true;
         phase("refine", t);
       }
     } else {
-      const std::string in_path = in + (opt_.poly ? ".poly" : ".node");
+      const std::string in_path = geojson_ ? opt_.input : in + (poly_ ? ".poly" : ".node");
       require_file(in_path);
       input_path_ = in_path;
       auto t = Clock::now();
-      const dm::Pslg input = opt_.poly ? dm::read_poly(in_path) : dm::read_node(in_path);
+      dm::Pslg input;
+      if (geojson_) {
+        dm::GeoJsonReadOptions gopt;
+        gopt.attribute_property = opt_.region_property;
+        gopt.area_property = opt_.area_property;
+        input = dm::read_geojson(in_path, gopt, &geojson_info_);
+      } else {
+        input = poly_ ? dm::read_poly(in_path) : dm::read_node(in_path);
+      }
       phase("read", t);
       first_index_ = input.first_index;
       holes_ = input.holes;
       regions_ = input.regions;
 
       dm::TriangulateOptions topt;
-      topt.use_segments = opt_.poly;
+      topt.use_segments = poly_;
       topt.method = opt_.cdt_method;
       topt.strict = opt_.strict;
-      topt.domain.fill = opt_.fill;
+      topt.domain.fill = geojson_ ? dm::FillRule::EvenOdd : opt_.fill;
       topt.domain.keep_convex_hull = opt_.convex_hull;
       topt.domain.ignore_holes = opt_.ignore_holes;
-      topt.domain.regional_attributes = opt_.regional_attributes && opt_.poly;
-      topt.check_segments = opt_.check && opt_.poly;
-      topt.domain.regional_area_bounds = opt_.area_from_regions && opt_.poly;
+      topt.domain.regional_attributes = (opt_.regional_attributes && poly_) || (geojson_ && !opt_.region_property.empty());
+      topt.check_segments = opt_.check && poly_;
+      topt.domain.regional_area_bounds = (opt_.area_from_regions && poly_) || (geojson_ && !opt_.area_property.empty());
       if (refining()) topt.refine = refine_options();
+      topt.progress = progress_callback();
       mesh = dm::triangulate(input, topt, &stats);
+      progress_.clear();
       if (topt.refine) {
         refine_stats_ = stats.refine;
         refined_ = true;
       }
-      if (opt_.poly) {
+      if (poly_) {
         phase(std::string("constrained triangulation (") + std::string(dm::to_string(opt_.cdt_method)) + ")",
               stats.triangulate_seconds, true);
         phases_.push_back({"  of which segments", stats.cdt.segments_seconds});
@@ -158,13 +175,13 @@ class Run {
       // A point set's Delaunay triangulation covers its convex hull; a
       // carved domain need not be convex; a mesh read with -r need not be
       // Delaunay.
-      copt.convex_hull = !opt_.poly && !opt_.refine && !refined_;  // split hull edges bend by rounding
+      copt.convex_hull = !poly_ && !opt_.refine && !refined_;  // split hull edges bend by rounding
       copt.delaunay = !opt_.refine && opt_.cdt_method != dm::CdtMethod::Ct;
       dm::CheckReport report = dm::check(mesh, copt);
       // With -p: every segment was a chain of constrained edges before
       // carving (checked in the pipeline), and carving left a boundary made
       // of segments only.
-      if (opt_.poly && !opt_.refine) {
+      if (poly_ && !opt_.refine) {
         for (const std::string& p : stats.segment_check.problems) report.problems.push_back("before carving: " + p);
         for (const std::string& p : dm::check_domain_boundary(mesh)) report.problems.push_back(p);
       }
@@ -195,9 +212,11 @@ class Run {
       written.push_back(path);
     };
     // Triangle writes a .poly when it read one, and for a point set with -c.
-    const bool write_poly = !opt_.no_poly && (opt_.poly || opt_.convex_hull);
-    emit(!opt_.no_node, ".node", [](auto& m, auto& p, auto& w) { dm::write_node(m, p, w); });
-    emit(!opt_.no_ele, ".ele", [](auto& m, auto& p, auto& w) { dm::write_ele(m, p, w); });
+    // With --output, only the named files (and those of -e -n -v -g) are written.
+    const bool only_named = !opt_.outputs.empty();
+    const bool write_poly = !only_named && !opt_.no_poly && (poly_ || opt_.convex_hull);
+    emit(!only_named && !opt_.no_node, ".node", [](auto& m, auto& p, auto& w) { dm::write_node(m, p, w); });
+    emit(!only_named && !opt_.no_ele, ".ele", [](auto& m, auto& p, auto& w) { dm::write_ele(m, p, w); });
     emit(write_poly, ".poly", [](auto& m, auto& p, auto& w) { dm::write_poly(m, p, w); });
     emit(opt_.edges, ".edge", [](auto& m, auto& p, auto& w) { dm::write_edge(m, p, w); });
     emit(opt_.neighbors, ".neigh", [](auto& m, auto& p, auto& w) { dm::write_neigh(m, p, w); });
@@ -209,11 +228,17 @@ class Run {
       dm::write_voronoi_edge(vd, out_base + ".v.edge", wopt.first_index);
       written.push_back(out_base + ".v.edge");
     }
+    std::optional<dm::BoundedVoronoi> cells;
+    if (opt_.voronoi_overlay && !opt_.outputs.empty()) cells = dm::bounded_voronoi(mesh);
     for (const std::string& path : opt_.outputs) {
       dm::OutputOptions oopt;
       oopt.first_index = wopt.first_index;
       oopt.write_markers = wopt.write_markers;
       oopt.svg.title = opt_.input;
+      oopt.msh.version = opt_.msh_v22 ? dm::MshVersion::V22 : dm::MshVersion::V41;
+      oopt.vtk.binary = opt_.vtu_binary;
+      oopt.geojson.segments = opt_.geojson_segments;
+      if (cells) oopt.voronoi = &*cells;
       dm::write_output(mesh, path, oopt);
       written.push_back(path);
     }
@@ -280,9 +305,38 @@ class Run {
     std::size_t boundary = 0;
     for (dm::HalfEdgeId e = 0; e < mesh.triangle_vertices().size(); ++e)
       if (mesh.twin(e) == dm::kNone) ++boundary;
+    if (opt_.verbose > 0) {
+      static const char* const notes[][2] = {
+          {"i", "incremental insertion: deltamesh inserts incrementally in Hilbert order; the Delaunay triangulation is the same"},
+          {"F", "Fortune's sweepline: deltamesh inserts incrementally in Hilbert order; the Delaunay triangulation is the same"},
+          {"l", "vertical cuts only: deltamesh does not use divide-and-conquer; no effect"},
+          {"X", "no exact arithmetic: deltamesh's predicates are always exact (adaptive); no effect"},
+          {"s", "segments forced in by splitting: deltamesh recovers segments in a constrained triangulation; "
+                "add -D for a conforming Delaunay mesh"},
+      };
+      for (char c : opt_.compat_notes)
+        for (const auto& n : notes)
+          if (n[0][0] == c) std::printf("Note: -%c: %s\n", c, n[1]);
+      if (geojson_) {
+        const dm::GeoJsonInfo& g = geojson_info_;
+        std::printf("GeoJSON: %s, %s, %s (%s), %s skipped, %zu unclosed closed, %zu degenerate ignored, "
+                    "%s merged, %s kept once, %s (%zu not placed)",
+                    plural(g.features, "feature", "features").c_str(), plural(g.polygons, "polygon", "polygons").c_str(),
+                    plural(g.rings, "ring", "rings").c_str(), plural(g.holes, "hole", "holes").c_str(),
+                    plural(g.skipped_geometries, "other geometry", "other geometries").c_str(), g.unclosed_rings,
+                    g.degenerate_rings, plural(g.duplicate_points, "duplicate point", "duplicate points").c_str(),
+                    plural(g.duplicate_segments, "shared segment", "shared segments").c_str(),
+                    plural(g.seeds, "region seed", "region seeds").c_str(), g.seeds_failed);
+        if (!g.categories.empty()) {
+          std::printf("; categories:");
+          for (std::size_t i = 0; i < g.categories.size(); ++i) std::printf(" %zu=%s", i + 1, g.categories[i].c_str());
+        }
+        std::printf("\n");
+      }
+    }
     if (opt_.refine) {
       std::printf("Mesh read: %zu vertices, %zu triangles\n", mesh.num_vertices(), mesh.num_triangles());
-    } else if (opt_.poly) {
+    } else if (poly_) {
       std::printf("Constrained Delaunay triangulation: %s, %s", plural(st.input_vertices, "input vertex", "input vertices").c_str(),
                   plural(st.input_segments, "segment", "segments").c_str());
       if (st.input_holes) std::printf(", %s", plural(st.input_holes, "hole", "holes").c_str());
@@ -305,7 +359,7 @@ class Run {
         std::printf("  input vertices:            %zu\n", st.input_vertices);
         std::printf("  duplicate vertices merged: %zu\n", st.duplicate_vertices);
       }
-      if (opt_.poly && !opt_.refine) {
+      if (poly_ && !opt_.refine) {
         std::printf("  input segments:            %zu\n", st.input_segments);
         std::printf("  segments already edges:    %zu (of the Delaunay triangulation)\n",
                     st.cdt.segments_already_present);
@@ -319,7 +373,7 @@ class Run {
         std::printf("  zero-length segments:      %zu ignored\n", st.cdt.zero_length_segments);
         std::printf("  holes:                     %zu (%zu used, %zu ignored)%s\n", st.input_holes,
                     st.domain.holes_used, st.domain.holes_ignored, opt_.ignore_holes ? " -O: not applied" : "");
-        if (opt_.regional_attributes)
+        if (opt_.regional_attributes || (geojson_ && !opt_.region_property.empty()))
           std::printf("  regions:                   %zu (%zu used, %zu ignored)\n", st.input_regions,
                       st.domain.regions_used, st.domain.regions_ignored);
         else
@@ -368,7 +422,17 @@ class Run {
     return dm::quality_report(mesh, q, refined_ ? &refine_stats_ : nullptr);
   }
 
+  // A live progress line on stderr when it is a terminal (not with -Q).
+  dm::ProgressCallback progress_callback() {
+    if (opt_.quiet || !progress_.enabled()) return {};
+    return progress_.callback();
+  }
+
   const Options& opt_;
+  dm::TerminalProgress progress_{stderr};
+  bool geojson_ = false;  // the input is GeoJSON (meshed even-odd, like -p)
+  bool poly_ = false;     // segments are meshed: -p or a GeoJSON input
+  dm::GeoJsonInfo geojson_info_;
   bool refined_ = false;
   dm::RefineStats refine_stats_;
   std::vector<Phase> phases_;
@@ -401,6 +465,10 @@ int main(int argc, char** argv) {
   if (!opt.unavailable.empty()) {
     for (const std::string& s : opt.unavailable)
       std::fprintf(stderr, "deltamesh: switch %s is not available in this version of deltamesh\n", s.c_str());
+    return kExitUsage;
+  }
+  if (opt.refine && is_geojson_input(opt.input)) {
+    std::fprintf(stderr, "deltamesh: -r reads a Triangle mesh (FILE.node, FILE.ele), not GeoJSON\n");
     return kExitUsage;
   }
   if (opt.input.empty()) {

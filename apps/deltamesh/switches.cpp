@@ -2,6 +2,7 @@
 
 #include "deltamesh/formats.hpp"
 
+#include <algorithm>
 #include <cctype>
 #include <cstdlib>
 #include <charconv>
@@ -41,7 +42,10 @@ class SwitchString {
         case 'n': o_.neighbors = true; break;
         case 'B': o_.no_markers = true; break;
         case 'h': o_.help = true; break;
-        case 'i': case 'F': case 'l': case 'X': break;  // accepted, no effect
+        case 'i': case 'F': case 'l': case 'X': case 's':  // accepted: mapped to ours, a note with -V
+          if (std::find(o_.compat_notes.begin(), o_.compat_notes.end(), c) == o_.compat_notes.end())
+            o_.compat_notes.push_back(c);
+          break;
         case 'q': {
           o_.quality = true;
           const std::string_view num = number();
@@ -88,7 +92,6 @@ class SwitchString {
         case 'D': o_.conforming_delaunay = true; break;
         case 'v': o_.voronoi = true; break;
         case 'g': o_.geomview = true; break;
-        case 's': o_.split_segments = true; planned(c, {}, "segment splitting"); break;
         default:
           if (std::isdigit(static_cast<unsigned char>(c)) || c == '.')
             throw UsageError{std::string("number '") + c + "' in '-" + std::string(s_) +
@@ -153,6 +156,37 @@ Options parse_arguments(const std::vector<std::string>& args) {
                            ": cannot tell the format from the extension (known: .msh .vtu .vtk .svg .geojson .json "
                            ".off .node .ele .edge .neigh .poly)"};
         o.outputs.push_back(v);
+      } else if (name == "--msh-version") {
+        const std::string v = value(name);
+        if (v == "2.2") o.msh_v22 = true;
+        else if (v == "4.1" || v == "4") o.msh_v22 = false;
+        else throw UsageError{"--msh-version=" + v + ": the version must be 2.2 or 4.1"};
+      } else if (name == "--region-property") {
+        o.region_property = value(name);
+      } else if (name == "--area-property") {
+        o.area_property = value(name);
+      } else if (name == "--min-angle") {
+        o.quality = true;
+        const std::string v = value(name);
+        char* end = nullptr;
+        const double t = std::strtod(v.c_str(), &end);
+        if (end == v.c_str() || *end != '\0' || !std::isfinite(t)) throw UsageError{"--min-angle=" + v + ": degrees, a number"};
+        o.min_angle = t;
+      } else if (name == "--max-area") {
+        o.area = true;
+        const std::string v = value(name);
+        char* end = nullptr;
+        const double t = std::strtod(v.c_str(), &end);
+        if (end == v.c_str() || *end != '\0' || !(t > 0) || !std::isfinite(t))
+          throw UsageError{"--max-area=" + v + ": the maximum area must be a positive number"};
+        o.max_area = t;
+      } else if (name == "--steiner-budget") {
+        const std::string v = value(name);
+        unsigned long long n = 0;
+        const auto r = std::from_chars(v.data(), v.data() + v.size(), n);
+        if (v.empty() || r.ec != std::errc() || r.ptr != v.data() + v.size())
+          throw UsageError{"--steiner-budget=" + v + ": a count of Steiner points"};
+        o.steiner_budget = n;
       } else if (name == "--cdt") {
         const std::string v = value(name);
         const std::optional<CdtMethod> m = v == "fast"     ? std::optional(CdtMethod::Fast)
@@ -212,6 +246,25 @@ Options parse_arguments(const std::vector<std::string>& args) {
         else if (name == "--convex-hull") o.convex_hull = true;
         else if (name == "--regional-attributes") o.regional_attributes = true;
         else if (name == "--ignore-holes") o.ignore_holes = true;
+        else if (name == "--vtu-binary") o.vtu_binary = true;
+        else if (name == "--geojson-segments") o.geojson_segments = true;
+        else if (name == "--voronoi-overlay") o.voronoi_overlay = true;
+        else if (name == "--poly") o.poly = true;
+        else if (name == "--refine") o.refine = true;
+        else if (name == "--quality") o.quality = true;
+        else if (name == "--regional-area") { o.area = true; o.area_from_regions = true; }
+        else if (name == "--user-area") { o.user_area = true; o.unavailable.push_back("--user-area (-u: user size function: the C++ API's RefineOptions::max_area_at)"); }
+        else if (name == "--conforming-delaunay") o.conforming_delaunay = true;
+        else if (name == "--voronoi") o.voronoi = true;
+        else if (name == "--off") o.geomview = true;
+        else if (name == "--second-order") { o.order = 2; o.unavailable.push_back("--second-order (-o2: second-order, six-node triangles)"); }
+        else if (name == "--no-boundary-steiner") ++o.no_boundary_steiner;
+        else if (name == "--incremental" || name == "--sweepline" || name == "--vertical-cuts" ||
+                 name == "--no-exact" || name == "--split-segments") {
+          const char c = name == "--incremental" ? 'i' : name == "--sweepline" ? 'F' : name == "--vertical-cuts" ? 'l'
+                       : name == "--no-exact" ? 'X' : 's';
+          if (std::find(o.compat_notes.begin(), o.compat_notes.end(), c) == o.compat_notes.end()) o.compat_notes.push_back(c);
+        }
         else throw UsageError{"unknown option " + name + " (see deltamesh --help)"};
       }
     } else if (a.size() > 1 && a[0] == '-') {
@@ -229,26 +282,36 @@ std::string help_text() {
 
 Usage: deltamesh [-switches] [--long-options] FILE
 
-Reads FILE.node (or FILE.poly with -p, or FILE.node + FILE.ele with -r) and
+Reads FILE.node (or FILE.poly with -p, or FILE.node + FILE.ele with -r, or
+FILE.geojson / FILE.json: GeoJSON polygons, meshed even-odd like -p) and
 writes FILE.1.node and FILE.1.ele, plus FILE.1.poly with -p (Triangle's formats
-and naming: an input FILE.1.node gives FILE.2.*).
+and naming: an input FILE.1.node gives FILE.2.*). With --output, only the
+named files are written (and those of -e -n -v -g).
+
+Every switch has a long option (shown on the right); see docs/cli.md.
 
 Switches (Triangle's, combinable as one string, e.g. -pczV):
+Input:
   -p  read FILE.poly: segments, holes, regional attributes; constrained
-      Delaunay triangulation of the domain the segments enclose
-  -r  read a mesh (FILE.node, FILE.ele; with -p also FILE.poly for its
+      Delaunay triangulation of the domain the segments enclose  --poly
+  -r  (--refine) read a mesh (FILE.node, FILE.ele; with -p also FILE.poly for its
       segments) and refine it (with -q/-a; -a without a number reads the
       per-triangle bounds of FILE.area) into the next iteration
-  -q[ANGLE]  quality mesh: no angle below ANGLE degrees (default 20), except
+Quality meshing:
+  -q[ANGLE]  (--quality, --min-angle=ANGLE) quality mesh: no angle below ANGLE degrees (default 20), except
       in input angles under 60 degrees; up to ~34 in practice
-  -a[AREA]   maximum triangle area; -a without a number: the .poly regions'
+  -a[AREA]   (--max-area=AREA, --regional-area) maximum triangle area; -a without a number: the .poly regions'
       bounds (with -r: FILE.area)
-  -S[N]      at most N Steiner points (exit code 3 if the bound is not reached)
+  -S[N]      (--steiner-budget=N) at most N Steiner points (exit code 3 if the bound is not reached)
   -Y  no Steiner points on boundary segments; -YY none on any segment
+      --no-boundary-steiner (twice: -YY)
   -D  conforming Delaunay: segments split until every edge is locally Delaunay
+      --conforming-delaunay
+Domain:
   -c  keep the whole convex hull and make its edges segments  --convex-hull
   -A  regional attribute per triangle from the .poly regions  --regional-attributes
   -O  ignore the holes of the .poly file                      --ignore-holes
+Output files:
   -P  do not write the .poly file                             --no-poly
   -z  number vertices and triangles from zero                 --zero-based
   -e  also write FILE.1.edge (edges with boundary markers)    --edges
@@ -258,15 +321,24 @@ Switches (Triangle's, combinable as one string, e.g. -pczV):
   -I  no iteration number: write FILE.node, FILE.ele           --no-iteration
   -j  drop duplicate and unused vertices from the output      --jettison
   -B  no boundary markers in the output                       --no-markers
+  -v  also write the Voronoi diagram (dual graph): FILE.1.v.node, FILE.1.v.edge
+      --voronoi
+  -g  also write FILE.1.off (Geomview's OFF format)           --off
+Messages and checks:
   -C  check the mesh (topology, orientation, Delaunay)        --check
   -Q  quiet: print nothing unless there is an error           --quiet
   -V  verbose: counts and timings per phase                   --verbose
-  -v  also write the Voronoi diagram (dual graph): FILE.1.v.node, FILE.1.v.edge
-  -g  also write FILE.1.off (Geomview's OFF format)
   -h  this help                                               --help
-  -i -F -l -X are accepted and have no effect.
-Not available yet (parsed, then refused): -o2 -s, and -u (a size function
-compiled in: in the C++ API it is RefineOptions::max_area_at, thread-safe).
+Triangle's algorithm choices, accepted and mapped to deltamesh's (-V prints a note):
+  -i (--incremental), -F (--sweepline): the Delaunay triangulation is the same
+      (deltamesh always inserts incrementally in Hilbert order)
+  -l (--vertical-cuts): no effect (no divide-and-conquer)
+  -X (--no-exact): no effect (predicates are always exact)
+  -s (--split-segments): segments are always recovered in a constrained
+      triangulation; add -D for a conforming Delaunay mesh
+Not available yet (parsed, then refused): -o2 (--second-order), and -u
+(--user-area: a size function compiled in; in the C++ API it is
+RefineOptions::max_area_at, thread-safe).
 
 Long options:
   --cdt=METHOD     segment insertion: fast (default), ct (flips, not always
@@ -284,10 +356,21 @@ Long options:
                    Ruppert's algorithm
   --time-limit=S   stop refining after S seconds (exit code 3)
   --stats=json     print the mesh quality report as one JSON object
-  --svg PATH       write an SVG picture of the mesh
-  --output PATH    also write the mesh to PATH, in the format its extension
-                   names: .msh (Gmsh) .vtu .vtk (VTK) .svg .geojson .off, or a
-                   Triangle format (repeatable)
+  --svg PATH       also write an SVG picture of the mesh
+Output formats:
+  --output PATH    write the mesh to PATH, in the format its extension names:
+                   .msh (Gmsh) .vtu .vtk (VTK) .svg .geojson .off, or a
+                   Triangle format (repeatable); when given, FILE.1.node/.ele/
+                   .poly are not written
+  --msh-version=V  2.2 or 4.1 (default) for .msh outputs
+  --vtu-binary     .vtu data arrays as base64 binary
+  --geojson-segments  .geojson outputs also carry boundary/segment lines
+  --voronoi-overlay   bounded Voronoi cells in .svg and .geojson outputs
+GeoJSON input (FILE.geojson, FILE.json):
+  --region-property=NAME  a feature property as the regional attribute of
+                   its polygons (strings numbered 1, 2, ... in order)
+  --area-property=NAME    a numeric feature property as the maximum
+                   triangle area of its polygons (needs -q or -a to refine)
   --version        print the version
 
 Examples:
@@ -297,6 +380,9 @@ Examples:
   deltamesh -rpe plate.1             rebuild plate.1 with its segments -> plate.2.*, with edges
   deltamesh -p --fill=evenodd map    polygons with nested rings and no hole points
   deltamesh -pq30a0.01V plate        quality mesh, angles >= 30, areas <= 0.01
+  deltamesh -pq --output plate.msh --msh-version=2.2 plate   only plate.msh (Gmsh 2.2)
+  deltamesh -q --region-property=name --output map.vtu map.geojson
+  deltamesh -pq --voronoi-overlay --output plate.svg plate   picture with Voronoi cells
 
 Exit codes:
   0 success (an empty domain is a success), 1 usage error or a switch not

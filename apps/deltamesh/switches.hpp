@@ -76,7 +76,15 @@ struct Options {
   bool strict = false;                        // --strict
   bool version = false;
   std::optional<std::string> svg_path;
-  std::vector<std::string> outputs;  // --output PATH (format from the extension)
+  std::vector<std::string> outputs;  // --output PATH (format from the extension); when given, only these
+                                     // (and -e -n -v -g files) are written, not FILE.1.node/.ele/.poly
+  bool msh_v22 = false;              // --msh-version=2.2 (default 4.1)
+  bool vtu_binary = false;           // --vtu-binary
+  bool geojson_segments = false;     // --geojson-segments
+  bool voronoi_overlay = false;      // --voronoi-overlay (bounded Voronoi cells in .svg/.geojson)
+  std::string region_property;       // --region-property NAME (GeoJSON input)
+  std::string area_property;         // --area-property NAME (GeoJSON input)
+  std::vector<char> compat_notes;    // -i -F -l -X -s given: explained with -V
   std::string input;  // the FILE argument as given
 };
 

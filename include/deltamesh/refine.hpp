@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "deltamesh/mesh.hpp"
+#include "deltamesh/progress.hpp"
 
 namespace deltamesh {
 
@@ -111,6 +112,9 @@ struct RefineOptions {
   std::size_t max_steiner = kAutomaticBudget;
   // Wall-clock limit in seconds (<= 0: none).
   double time_limit_seconds = 0.0;
+  // Progress: phase "refine", counting Steiner points (total unknown);
+  // see progress.hpp. Empty: no reports.
+  ProgressCallback progress;
 };
 
 struct RefineStats {

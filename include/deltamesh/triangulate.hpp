@@ -15,6 +15,7 @@
 #include "deltamesh/delaunay.hpp"
 #include "deltamesh/domain.hpp"
 #include "deltamesh/mesh.hpp"
+#include "deltamesh/progress.hpp"
 #include "deltamesh/pslg.hpp"
 #include "deltamesh/refine.hpp"
 #include "deltamesh/validate.hpp"
@@ -40,6 +41,10 @@ struct TriangulateOptions {
   // of -a without a number (domain.regional_area_bounds), which refinement
   // honours unless refine->use_triangle_area_bounds is false.
   std::optional<RefineOptions> refine;
+  // Progress per phase ("insert points", "recover segments", "carve domain",
+  // then refinement's "refine" in Steiner points unless refine->progress is
+  // set); see progress.hpp. Empty: no reports.
+  ProgressCallback progress;
 };
 
 struct TriangulateStats {

@@ -42,6 +42,7 @@
 
 #include "core/expansion.hpp"
 #include "deltamesh/predicates.hpp"
+#include "deltamesh/progress.hpp"
 
 namespace deltamesh {
 
@@ -1259,7 +1260,9 @@ void Refiner::run() {
       encroached_.push_back({tv_[e], tv_[next_edge(e)], e});
   for (TriId t = 0; t < nt; ++t) consider(t);
   const bool timed = opt_.time_limit_seconds > 0;
+  ProgressReporter progress(opt_.progress, "refine", "Steiner points");
   while (!stopped_) {
+    if (progress.active()) progress.set(st_.steiner_points);
     if (timed && (++iterations_ & 255) == 0 &&
         std::chrono::duration<double>(Clock::now() - start_).count() > opt_.time_limit_seconds) {
       st_.time_exhausted = true;

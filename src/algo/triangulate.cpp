@@ -180,7 +180,11 @@ Mesh triangulate(const Pslg& pslg, const TriangulateOptions& options, Triangulat
     DelaunayOptions dopt;
     dopt.keep_ghosts = options.domain.keep_convex_hull;  // the hull edges are constrained below
     DelaunayStats ds;
-    mesh = delaunay(pslg.points, dopt, &ds);
+    {
+      ProgressReporter rep(options.progress, "insert points", "points", pslg.points.size());
+      mesh = delaunay(pslg.points, dopt, &ds);
+      rep.set(pslg.points.size());
+    }
     st.duplicate_vertices = ds.duplicates;
     st.triangulate_seconds = seconds_since(t);
     carry_vertex_data(mesh, pslg, false);
@@ -195,7 +199,11 @@ Mesh triangulate(const Pslg& pslg, const TriangulateOptions& options, Triangulat
     CdtOptions copt;
     copt.method = options.method;
     copt.strict = options.strict;
-    mesh = constrained_triangulation(pslg, copt, &st.cdt);
+    {
+      ProgressReporter rep(options.progress, "insert points, recover segments", "segments", pslg.segments.size());
+      mesh = constrained_triangulation(pslg, copt, &st.cdt);
+      rep.set(pslg.segments.size());
+    }
     st.triangulate_seconds = seconds_since(t);
     st.duplicate_vertices = st.cdt.duplicate_vertices;
     st.steiner_vertices = mesh.num_vertices() - std::min(mesh.num_vertices(), pslg.points.size());
@@ -210,7 +218,10 @@ Mesh triangulate(const Pslg& pslg, const TriangulateOptions& options, Triangulat
     carry_vertex_data(mesh, pslg, true);
 
     t = Clock::now();
-    carve_domain(mesh, pslg, options.domain, &st.domain);
+    {
+      ProgressReporter rep(options.progress, "carve domain", "triangles", mesh.num_triangles());
+      carve_domain(mesh, pslg, options.domain, &st.domain);
+    }
     st.domain_seconds = seconds_since(t);
 
     if (st.cdt.zero_length_segments)
@@ -232,7 +243,13 @@ Mesh triangulate(const Pslg& pslg, const TriangulateOptions& options, Triangulat
   // from finish_vertex_markers below.
   if (options.refine && mesh.num_triangles() > 0) {
     t = Clock::now();
-    st.refine = refine(mesh, *options.refine);
+    if (options.progress && !options.refine->progress) {
+      RefineOptions ropt = *options.refine;
+      ropt.progress = options.progress;
+      st.refine = refine(mesh, ropt);
+    } else {
+      st.refine = refine(mesh, *options.refine);
+    }
     st.refine_seconds = seconds_since(t);
   }
 
