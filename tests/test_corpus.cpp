@@ -7,9 +7,12 @@
 //    triangle count and the even-odd area where the input has no crossing,
 //    overlapping or touching segments; the files whose notes say they need
 //    -c are also meshed with -c.
+//  - the command line on a copy of each file: -C passes, exit code 0.
 // Skipped with a message when the corpus is not there. The files are not
 // copied into this repository (their licences vary).
 #include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <chrono>
 #include <cmath>
@@ -25,7 +28,6 @@
 #include "deltamesh/triangle_io.hpp"
 #include "deltamesh/triangulate.hpp"
 #include "deltamesh/validate.hpp"
-#include "test_domain_check.hpp"
 
 using namespace deltamesh;
 namespace fs = std::filesystem;
@@ -117,7 +119,7 @@ void expect_boundary_of_segments(const Mesh& m, const std::string& what) {
 void expect_valid(const Mesh& m, bool convex, const std::string& what) {
   CheckOptions opt;
   opt.convex_hull = convex;
-  const CheckReport r = domain_check::check_allowing_pinches(m, opt);
+  const CheckReport r = check(m, opt);
   EXPECT_TRUE(r.ok()) << what << ": " << r.summary();
 }
 
@@ -198,6 +200,30 @@ TEST_P(Corpus, MeshesAndValidates) {
       }
     }
   }
+  // The command line on a copy (outputs go beside the input): -C passes,
+  // exit code 0, and the .ele says what the library said.
+  const fs::path dir = fs::temp_directory_path() / ("deltamesh_corpus_" + std::to_string(::getpid()) + "_" + name);
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  fs::copy_file(file, dir / name);
+  const bool poly = file.extension() == ".poly";
+  const std::string switches = !poly ? "-CQ" : needs_convex_hull().count(name) ? "-pcCQ" : "-pCQ";
+  const std::string cmd = "cd '" + dir.string() + "' && '" + DELTAMESH_CLI + "' " + switches + " '" + name +
+                          "' > cli.out 2> cli.err";
+  const int status = std::system(cmd.c_str());
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0)
+      << name << " " << switches << ": exit " << (WIFEXITED(status) ? WEXITSTATUS(status) : -1) << "\n"
+      << std::ifstream(dir / "cli.err").rdbuf();
+  const fs::path ele = dir / (file.stem().string() + ".1.ele");
+  EXPECT_TRUE(fs::exists(ele)) << name;
+  if (poly && exp.triangle_empty && !needs_convex_hull().count(name) && fs::exists(ele)) {
+    std::ifstream in(ele);
+    long long count = -1;
+    in >> count;
+    EXPECT_EQ(count, 0) << name << ": expected an empty mesh from the command line";
+  }
+  if (!HasFailure()) fs::remove_all(dir);
+
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   EXPECT_LT(seconds, 30.0) << name << " took " << seconds << " s";
 }

@@ -15,7 +15,6 @@
 #include "deltamesh/errors.hpp"
 #include "deltamesh/triangulate.hpp"
 #include "deltamesh/validate.hpp"
-#include "test_domain_check.hpp"
 
 using namespace deltamesh;
 
@@ -72,7 +71,7 @@ std::size_t boundary_edges(const Mesh& m) {
 void expect_valid(const Mesh& m, bool convex = false) {
   CheckOptions opt;
   opt.convex_hull = convex;
-  const CheckReport r = domain_check::check_allowing_pinches(m, opt);
+  const CheckReport r = check(m, opt);
   EXPECT_TRUE(r.ok()) << r.summary();
   EXPECT_TRUE(m.compacted());
 }
