@@ -442,11 +442,33 @@ TEST_F(Cli, NumbersAttachedToSwitchesParse) {
   const Result r = run("-pq30.5a0.01zQ square_hole");
   EXPECT_EQ(r.code, 0) << r.err;
   EXPECT_TRUE(exists("square_hole.1.node"));
-  // -o2 is parsed, then refused while the writers do not take it.
-  const Result s = run("-pS100o2Y square_hole");
+  // -u is parsed, then refused (a size function compiled in).
+  const Result s = run("-pS100uY square_hole");
   EXPECT_EQ(s.code, 1);
-  EXPECT_CONTAINS(s.err, "-o2");
+  EXPECT_CONTAINS(s.err, "-u");
   EXPECT_CONTAINS(s.err, "not available");
+}
+
+TEST_F(Cli, SecondOrderTriangles) {
+  data("square_hole.poly");
+  const Result r = run("-pS100o2Ye --output=sq.msh --output=sq.vtu square_hole");
+  ASSERT_EQ(r.code, 0) << r.err;
+  // --output given: only the named files and -e's.
+  EXPECT_EQ(listing(), (std::vector<std::string>{"sq.msh", "sq.vtu", "square_hole.1.edge", "square_hole.poly"}));
+  EXPECT_CONTAINS(slurp(path("sq.vtu")), "22");  // VTK_QUADRATIC_TRIANGLE
+  const Result t = run("-pqo2 square_hole");
+  ASSERT_EQ(t.code, 0) << t.err;
+  const auto ele = table(path("square_hole.1.ele"));
+  const auto node = table(path("square_hole.1.node"));
+  ASSERT_GE(ele.size(), 2u);
+  EXPECT_EQ(ele[0][1], "6");
+  EXPECT_EQ(ele[1].size(), 7u);  // index, 3 corners, 3 midside nodes
+  // Every node index is a vertex of the .node file; the midside nodes come
+  // after the corners' vertices.
+  const long nv = std::stol(node[0][0]);
+  for (std::size_t i = 1; i < ele.size(); ++i)
+    for (std::size_t k = 1; k < 7; ++k) EXPECT_LE(std::stol(ele[i][k]), nv);
+  EXPECT_GT(std::stol(ele[1][4]), std::stol(ele[1][1]));
 }
 
 TEST_F(Cli, UsageErrors) {

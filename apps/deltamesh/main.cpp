@@ -204,6 +204,14 @@ class Run {
     wopt.write_markers = !opt_.no_markers;
     wopt.holes = holes_;      // the output .poly describes the same domain
     wopt.regions = regions_;
+    // -o2: a node at the midpoint of every edge, appended to the vertices
+    // (after -j and -C, which see the linear mesh).
+    std::vector<dm::VertexId> midside;
+    if (opt_.order == 2) {
+      if (!mesh.compacted()) mesh.compact();
+      midside = dm::add_midside_vertices(mesh);
+      wopt.midside = midside;
+    }
     std::vector<std::string> written;
     auto emit = [&](bool enabled, const char* ext, auto writer) {
       if (!enabled) return;
@@ -238,6 +246,8 @@ class Run {
       oopt.msh.version = opt_.msh_v22 ? dm::MshVersion::V22 : dm::MshVersion::V41;
       oopt.vtk.binary = opt_.vtu_binary;
       oopt.geojson.segments = opt_.geojson_segments;
+      oopt.msh.second_order.midside = midside;
+      oopt.vtk.second_order.midside = midside;
       if (cells) oopt.voronoi = &*cells;
       dm::write_output(mesh, path, oopt);
       written.push_back(path);

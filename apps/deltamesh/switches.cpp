@@ -80,7 +80,6 @@ class SwitchString {
             throw UsageError{"switch -o must be followed by 2 (-o2: second-order, six-node triangles)"};
           ++i_;
           o_.order = 2;
-          planned(c, "2", "second-order, six-node triangles");
           break;
         }
         case 'Y':
@@ -257,7 +256,7 @@ Options parse_arguments(const std::vector<std::string>& args) {
         else if (name == "--conforming-delaunay") o.conforming_delaunay = true;
         else if (name == "--voronoi") o.voronoi = true;
         else if (name == "--off") o.geomview = true;
-        else if (name == "--second-order") { o.order = 2; o.unavailable.push_back("--second-order (-o2: second-order, six-node triangles)"); }
+        else if (name == "--second-order") o.order = 2;
         else if (name == "--no-boundary-steiner") ++o.no_boundary_steiner;
         else if (name == "--incremental" || name == "--sweepline" || name == "--vertical-cuts" ||
                  name == "--no-exact" || name == "--split-segments") {
@@ -336,9 +335,10 @@ Triangle's algorithm choices, accepted and mapped to deltamesh's (-V prints a no
   -X (--no-exact): no effect (predicates are always exact)
   -s (--split-segments): segments are always recovered in a constrained
       triangulation; add -D for a conforming Delaunay mesh
-Not available yet (parsed, then refused): -o2 (--second-order), and -u
-(--user-area: a size function compiled in; in the C++ API it is
-RefineOptions::max_area_at, thread-safe).
+  -o2 (--second-order): six-node triangles: a node at the midpoint of every
+      edge, in FILE.1.node and the 6-node FILE.1.ele, and in .msh/.vtu/.vtk outputs
+Not available (parsed, then refused): -u (--user-area: a size function
+compiled in; in the C++ API it is RefineOptions::max_area_at, thread-safe).
 
 Long options:
   --cdt=METHOD     segment insertion: fast (default), ct (flips, not always

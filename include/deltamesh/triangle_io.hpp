@@ -35,6 +35,10 @@ struct TriangleWriteOptions {
   // Holes and regions write_poly lists after the segments (none by default).
   std::span<const Point> holes;
   std::span<const RegionSeed> regions;
+  // Six-node triangles (Triangle's -o2): 3 midside vertex ids per triangle
+  // slot (refine.hpp's add_midside_vertices), written by write_ele after the
+  // corners, node k on the edge opposite corner k. Empty: three-node triangles.
+  std::span<const VertexId> midside;
 };
 
 void write_node(const Mesh& mesh, const std::string& path, const TriangleWriteOptions& opt = {});

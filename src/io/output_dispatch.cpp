@@ -79,7 +79,10 @@ void write_output(const Mesh& mesh, const std::string& path, const OutputOptions
     }
     case OutputFormat::Off: write_off(mesh, path); return;
     case OutputFormat::Node: write_node(mesh, path, tri); return;
-    case OutputFormat::Ele: write_ele(mesh, path, tri); return;
+    case OutputFormat::Ele:
+      tri.midside = options.msh.second_order.midside;  // six-node triangles when the msh has them (-o2)
+      write_ele(mesh, path, tri);
+      return;
     case OutputFormat::Edge: write_edge(mesh, path, tri); return;
     case OutputFormat::Neigh: write_neigh(mesh, path, tri); return;
     case OutputFormat::Poly: write_poly(mesh, path, tri); return;

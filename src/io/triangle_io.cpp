@@ -558,15 +558,21 @@ void write_ele(const Mesh& mesh, const std::string& path, const TriangleWriteOpt
   const std::size_t na = opt.write_attributes ? mesh.num_triangle_attributes() : 0;
   const std::vector<double>& attrs = mesh.triangle_attributes();
 
+  const std::size_t slots = mesh.num_triangle_slots();
+  const bool six = !opt.midside.empty();
+  if (six && opt.midside.size() != 3 * slots)
+    throw Error("write_ele: " + std::to_string(opt.midside.size()) + " midside nodes given for " +
+                std::to_string(slots) + " triangle slots");
   out.put_int(static_cast<long long>(num.count));
-  out.put(" 3");
+  out.put(six ? " 6" : " 3");
   out.field_int(static_cast<long long>(na));
   out.put('\n');
-  const std::size_t slots = mesh.num_triangle_slots();
   for (TriId t = 0; t < slots; ++t) {
     if (!mesh.is_real(t)) continue;
     out.put_int(static_cast<long long>(num(t)) + opt.first_index);
     for (const VertexId v : mesh.triangle(t)) out.field_int(static_cast<long long>(v) + opt.first_index);
+    if (six)
+      for (int k = 0; k < 3; ++k) out.field_int(static_cast<long long>(opt.midside[3 * std::size_t{t} + k]) + opt.first_index);
     for (std::size_t k = 0; k < na; ++k) {
       const std::size_t i = std::size_t{t} * na + k;
       out.field_double(i < attrs.size() ? attrs[i] : 0.0);
