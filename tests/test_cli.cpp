@@ -254,6 +254,10 @@ TEST_F(Cli, GeoJsonInput) {
   }
   EXPECT_TRUE(saw1);
   EXPECT_TRUE(saw2);
+  // The area property alone refines to its bound (0.5 in polygon a).
+  r = run("--area-property=maxa -Q map.geojson");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_GT(std::stol(table(path("map.1.ele"))[0][0]), 20);
   r = run("--output=map.vtu map.json");
   EXPECT_EQ(r.code, 2);  // no such file
   r = run("-r map.geojson");

@@ -405,13 +405,17 @@ class Run {
   }
 
   // Refinement is asked for by -q, -a, -S or -D.
-  bool refining() const { return opt_.quality || opt_.area || opt_.steiner_budget || opt_.conforming_delaunay; }
+  // A GeoJSON --area-property asks for its bounds, so it refines too.
+  bool refining() const {
+    return opt_.quality || opt_.area || opt_.steiner_budget || opt_.conforming_delaunay ||
+           (geojson_ && !opt_.area_property.empty());
+  }
 
   dm::RefineOptions refine_options() const {
     dm::RefineOptions r;
     r.min_angle_deg = opt_.quality ? opt_.min_angle.value_or(20.0) : 0.0;
     r.max_area = opt_.max_area.value_or(-1.0);
-    r.use_triangle_area_bounds = opt_.area_from_regions;
+    r.use_triangle_area_bounds = opt_.area_from_regions || (geojson_ && !opt_.area_property.empty());
     r.steiner = opt_.steiner;
     r.encroachment = opt_.encroachment;
     r.order = opt_.refine_order;

@@ -370,7 +370,7 @@ GeoJSON input (FILE.geojson, FILE.json):
   --region-property=NAME  a feature property as the regional attribute of
                    its polygons (strings numbered 1, 2, ... in order)
   --area-property=NAME    a numeric feature property as the maximum
-                   triangle area of its polygons (needs -q or -a to refine)
+                   triangle area of its polygons (refines to meet them)
   --version        print the version
 
 Examples:
