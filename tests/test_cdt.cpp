@@ -782,3 +782,46 @@ TEST(CdtChainOrder, NotTriedOnShortSegments) {
   EXPECT_FALSE(st.chain_order_abandoned);
   expect_valid(m, g, CdtMethod::Fast, "short segments");
 }
+
+TEST(CdtChainOrder, InputVertexAtACrossing) {
+  // The diagonals cross at (1,1), which is also an input vertex on no segment:
+  // in the chain order it arrives after the crossing was added, and takes
+  // that vertex's place (no extra vertex is left over).
+  Pslg g;
+  g.points = {{0, 0}, {2, 2}, {0, 2}, {2, 0}, {1, 1}, {3, 1}, {1, 3}};
+  g.segments = {{0, 1, 1}, {2, 3, 2}, {5, 6, 3}};
+  for (Variant method : kMethods) {
+    CdtStats st;
+    const Mesh m = cdt(g, method, &st);
+    expect_valid(m, g, method, "input vertex at a crossing");
+    EXPECT_EQ(m.num_vertices(), g.points.size()) << name(method);
+    EXPECT_EQ(st.intersections, method.chain ? 1u : 0u) << name(method);
+    for (auto [a, b] : {std::pair{0u, 4u}, {4u, 1u}, {2u, 4u}, {4u, 3u}})
+      EXPECT_TRUE(has_edge(m, a, b, true)) << name(method) << " " << a << "-" << b;
+  }
+}
+
+TEST(CdtDegenerate, NearlyConcurrentSegmentsTerminate) {
+  // Short random segments between points close in x: many cross, some
+  // nearly at a shared endpoint, where rounded crossings used to keep
+  // creating new crossings an ulp apart. Crossings within rounding distance
+  // of an endpoint are resolved at it.
+  for (std::uint64_t seed = 1; seed <= 3; ++seed) {
+    Pslg g;
+    g.points = gen::uniform_points(1000, seed);
+    gen::Rng rng(seed + 1000);
+    std::vector<VertexId> order(1000);
+    for (VertexId i = 0; i < 1000; ++i) order[i] = i;
+    std::sort(order.begin(), order.end(), [&](VertexId a, VertexId b) { return g.points[a].x < g.points[b].x; });
+    for (int s = 0; s < 500; ++s) {
+      const std::size_t i = rng.below(1000), j = std::min<std::size_t>(999, i + 1 + rng.below(31));
+      if (i != j) g.segments.push_back({order[i], order[j], 1});
+    }
+    for (Variant method : kMethods) {
+      CdtStats st;
+      const Mesh m = cdt(g, method, &st);
+      expect_valid(m, g, method, "nearly concurrent seed " + std::to_string(seed));
+      EXPECT_LT(st.intersections, 2000u) << name(method);
+    }
+  }
+}

@@ -59,6 +59,11 @@ struct CdtStats {
   // the crossed edge and was inserted as a free vertex instead.
   std::size_t method_fallbacks = 0;
   std::size_t intersection_fallbacks = 0;
+  // Crossings within a few rounding errors (64 ulps of the coordinates) of
+  // an endpoint of either segment piece, resolved at that endpoint instead
+  // of by a new vertex (nearly concurrent segments would otherwise keep
+  // crossing each other's rounded pieces).
+  std::size_t crossings_snapped = 0;
   // When the segments are long against the spacing of the vertices (mean
   // length over twice sqrt(bounding box area / vertices): a star-shaped
   // polygon, not a coastline), Fast first inserts the vertices along the

@@ -14,6 +14,7 @@
 #include "algo/cdt_builder.hpp"
 #include "deltamesh/delaunay.hpp"
 #include "deltamesh/errors.hpp"
+#include "core/expansion.hpp"
 #include "deltamesh/predicates.hpp"
 
 namespace deltamesh {
@@ -260,6 +261,33 @@ void CdtBuilder::resolve_crossing(const Piece& p, HalfEdgeId cd) {
     if (std::fabs(q.x) < kMinCoordinate) q.x = 0.0;
     if (std::fabs(q.y) < kMinCoordinate) q.y = 0.0;
   }
+  // A crossing within a few rounding errors of an endpoint is taken to be at
+  // that endpoint: otherwise nearly concurrent segments can keep crossing
+  // each other's rounded pieces an ulp further along, without end.
+  {
+    const double scale = std::max({std::fabs(pa.x), std::fabs(pa.y), std::fabs(pb.x), std::fabs(pb.y),
+                                   std::fabs(pc.x), std::fabs(pc.y), std::fabs(pd.x), std::fabs(pd.y)});
+    const double tol = 64.0 * kEpsilon * scale;
+    auto near = [&](const Point& q) { return std::fabs(q.x - cand[0].x) <= tol && std::fabs(q.y - cand[0].y) <= tol; };
+    for (const VertexId x : {c, d}) {
+      if (!near(pt(x))) continue;
+      // The piece passes (within rounding) through an end of cd: split it there.
+      ++st_.crossings_snapped;
+      pieces_.push_back({x, p.b, p.seg});
+      pieces_.push_back({p.a, x, p.seg});
+      return;
+    }
+    for (const VertexId x : {p.a, p.b}) {
+      if (!near(pt(x))) continue;
+      // cd passes (within rounding) through an end of the piece: cd is split there.
+      ++st_.crossings_snapped;
+      release(cd);
+      pieces_.push_back({x, d, other});
+      pieces_.push_back({c, x, other});
+      pieces_.push_back({p.a, p.b, p.seg});
+      return;
+    }
+  }
   for (const Point& q : cand) {
     if (!split_fits(cd, q)) continue;
     const VertexId v = mesh_.add_vertex(q);
@@ -274,16 +302,8 @@ void CdtBuilder::resolve_crossing(const Piece& p, HalfEdgeId cd) {
   // vertex (or use the vertex it coincides with), and insert both segments
   // again through it.
   ++st_.intersection_fallbacks;
-  const HalfEdgeId dc = tw_[cd];
-  flags_[cd] &= static_cast<std::uint8_t>(~kConstrained);
-  flags_[dc] &= static_cast<std::uint8_t>(~kConstrained);
-  if (ids_) seg_of_[cd] = seg_of_[dc] = 0;
-  // cd was locally Delaunay only as a segment: flip where needed first, so
-  // that the triangulation is the CDT of what is constrained now.
   const TriId hint = tri_of(cd);
-  lawson_stack_.clear();
-  lawson_stack_.push_back(cd);
-  lawson_flips(lawson_stack_);
+  release(cd);
   const std::size_t before = pts_.size();
   const VertexId v = inserter_.insert_point(cand[0], hint).vertex;
   if (v == kNone) throw InputError("internal error: a segment crossing could not be located");
@@ -292,6 +312,19 @@ void CdtBuilder::resolve_crossing(const Piece& p, HalfEdgeId cd) {
   pieces_.push_back({c, v, other});
   pieces_.push_back({v, p.b, p.seg});
   pieces_.push_back({p.a, v, p.seg});
+}
+
+// Unconstrains edge cd (its segment goes back in as pieces). cd was locally
+// Delaunay only as a segment: flip where needed, so that the triangulation is
+// the CDT of what is constrained now.
+void CdtBuilder::release(HalfEdgeId cd) {
+  const HalfEdgeId dc = tw_[cd];
+  flags_[cd] &= static_cast<std::uint8_t>(~kConstrained);
+  flags_[dc] &= static_cast<std::uint8_t>(~kConstrained);
+  if (ids_) seg_of_[cd] = seg_of_[dc] = 0;
+  lawson_stack_.clear();
+  lawson_stack_.push_back(cd);
+  lawson_flips(lawson_stack_);
 }
 
 void CdtBuilder::finish() {
@@ -338,13 +371,68 @@ bool long_segments(const Pslg& pslg) {
   }
   const double area = (x1 - x0) * (y1 - y0);
   if (!(area > 0) || !std::isfinite(area)) return false;
+  // The mean length over a sample of (at most about 4096) segments.
+  const std::size_t stride = pslg.segments.size() / 4096 + 1;
   double length = 0;
-  for (const Segment& s : pslg.segments) {
-    if (s.a >= pslg.points.size() || s.b >= pslg.points.size()) return false;
-    length += std::hypot(pslg.points[s.a].x - pslg.points[s.b].x, pslg.points[s.a].y - pslg.points[s.b].y);
+  std::size_t sampled = 0;
+  for (std::size_t i = 0; i < pslg.segments.size(); i += stride, ++sampled) {
+    const Point& a = pslg.points[pslg.segments[i].a];
+    const Point& b = pslg.points[pslg.segments[i].b];
+    length += std::sqrt((a.x - b.x) * (a.x - b.x) + (a.y - b.y) * (a.y - b.y));
   }
   const double spacing = std::sqrt(area / static_cast<double>(pslg.points.size()));
-  return length / static_cast<double>(pslg.segments.size()) > 2.0 * spacing;
+  return length / static_cast<double>(sampled) > 2.0 * spacing;
+}
+
+// Relabels vertex `from` as `to` around its fan.
+void relabel(Mesh& mesh, VertexId from, VertexId to) {
+  std::vector<VertexId>& tv = mesh.tri_v_mut();
+  std::vector<HalfEdgeId>& ve = mesh.vert_edge_mut();
+  const std::vector<HalfEdgeId>& tw = mesh.twin_mut();
+  const HalfEdgeId start = ve[from];
+  HalfEdgeId e = start;
+  do {
+    tv[e] = to;
+    e = tw[prev_edge(e)];
+  } while (e != start);
+  ve[to] = start;
+  ve[from] = kNone;
+}
+
+// In the chain order an input vertex may arrive exactly where two segments
+// inserted before it cross (first_copy[v] >= n, a vertex added there). The
+// input vertex takes that vertex's place, and the added vertices left in no
+// triangle are dropped, the last ones moved into their ids.
+void claim_crossing_vertices(Mesh& mesh, std::vector<VertexId>& first_copy) {
+  const std::size_t n = first_copy.size();
+  const std::size_t total = mesh.num_vertices();
+  std::vector<VertexId> claimant(total - n, kNone);
+  bool any = false;
+  for (VertexId v = 0; v < n; ++v) {
+    const VertexId s = first_copy[v];
+    if (s < n) continue;
+    if (claimant[s - n] == kNone) {
+      claimant[s - n] = v;
+      relabel(mesh, s, v);
+      any = true;
+    }
+    first_copy[v] = claimant[s - n];
+  }
+  if (!any) return;
+  std::vector<Point>& pts = mesh.points_mut();
+  std::vector<HalfEdgeId>& ve = mesh.vert_edge_mut();
+  std::size_t end = total;
+  for (std::size_t h = n; h < end; ++h) {
+    if (ve[h] != kNone) continue;  // still used
+    while (end > h + 1 && ve[end - 1] == kNone) --end;
+    if (end > h + 1) {  // move the last used added vertex into the hole
+      pts[h] = pts[end - 1];
+      relabel(mesh, static_cast<VertexId>(end - 1), static_cast<VertexId>(h));
+    }
+    --end;
+  }
+  pts.resize(end);
+  ve.resize(end);
 }
 
 // Of equal points the triangulation keeps the one it inserted first; keep
@@ -357,21 +445,8 @@ void keep_lowest_copies(Mesh& mesh, std::vector<VertexId>& kept) {
   for (VertexId v = 0; v < n; ++v) low[v] = v;
   for (VertexId v = 0; v < n; ++v)
     if (v < low[kept[v]]) low[kept[v]] = v;
-  std::vector<VertexId>& tv = mesh.tri_v_mut();
-  std::vector<HalfEdgeId>& ve = mesh.vert_edge_mut();
-  const std::vector<HalfEdgeId>& tw = mesh.twin_mut();
-  for (VertexId k = 0; k < n; ++k) {
-    if (kept[k] != k || low[k] == k) continue;
-    // Relabel k as its lowest copy around k's fan.
-    const HalfEdgeId start = ve[k];
-    HalfEdgeId e = start;
-    do {
-      tv[e] = low[k];
-      e = tw[prev_edge(e)];
-    } while (e != start);
-    ve[low[k]] = start;
-    ve[k] = kNone;
-  }
+  for (VertexId k = 0; k < n; ++k)
+    if (kept[k] == k && low[k] != k) relabel(mesh, k, low[k]);
   for (VertexId v = 0; v < n; ++v) kept[v] = low[kept[v]];
 }
 }  // namespace
@@ -396,6 +471,7 @@ Mesh constrained_triangulation(const Pslg& pslg, const CdtOptions& options, CdtS
     Mesh mesh;
     std::vector<VertexId> first_copy;
     if (detail::chain_order_cdt(mesh, pslg, options, st, first_copy)) {
+      if (mesh.num_vertices() > n) claim_crossing_vertices(mesh, first_copy);
       if (st.duplicate_vertices > 0) keep_lowest_copies(mesh, first_copy);
       st.chain_order = true;
       st.triangulate_seconds = seconds_since(t0);

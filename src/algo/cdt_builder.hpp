@@ -63,6 +63,7 @@ class CdtBuilder {
   void mark(HalfEdgeId e, std::uint32_t seg);
   void resolve_crossing(const Piece& piece, HalfEdgeId cd);
   bool split_fits(HalfEdgeId cd, const Point& p) const;
+  void release(HalfEdgeId cd);
 
   // Recovery of a clean piece (crossings_ filled by trace, all unconstrained).
   void recover(VertexId a, VertexId b, std::uint32_t seg);

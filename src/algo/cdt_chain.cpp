@@ -35,49 +35,35 @@ inline std::uint32_t xorshift(std::uint64_t& s) {
 // (a chain in chain order, a polygon in polygon order), components ordered
 // along a Hilbert curve by their first vertex, then the vertices on no
 // segment along the Hilbert curve.
-std::vector<VertexId> chain_order(const Pslg& pslg) {
+std::vector<VertexId> chain_order(const Pslg& pslg, const std::vector<std::uint32_t>& start,
+                                  const std::vector<std::uint32_t>& inc) {
   const std::size_t n = pslg.points.size();
-  std::vector<std::uint32_t> start(n + 1, 0);
-  for (const Segment& s : pslg.segments)
-    if (s.a != s.b) {
-      ++start[s.a + 1];
-      ++start[s.b + 1];
+  auto other = [&](std::uint32_t k, VertexId u) {
+    const Segment& s = pslg.segments[inc[k]];
+    return s.a == u ? s.b : s.a;
+  };
+  std::vector<VertexId> order;
+  order.reserve(n);
+  // One polygon through every vertex: its order, read off directly.
+  bool single = n > 0;
+  for (std::size_t v = 0; v < n && single; ++v) single = start[v + 1] - start[v] == 2;
+  if (single) {
+    VertexId prev = 0, cur = other(start[0], 0);
+    order.push_back(0);
+    while (cur != 0 && order.size() < n) {
+      order.push_back(cur);
+      const VertexId a = other(start[cur], cur), b = other(start[cur] + 1, cur);
+      const VertexId next = a == prev ? b : a;
+      prev = cur;
+      cur = next;
     }
-  for (std::size_t v = 0; v < n; ++v) start[v + 1] += start[v];
-  std::vector<VertexId> adj(start[n]);
-  {
-    std::vector<std::uint32_t> fill(start.begin(), start.end() - 1);
-    for (const Segment& s : pslg.segments)
-      if (s.a != s.b) {
-        adj[fill[s.a]++] = s.b;
-        adj[fill[s.b]++] = s.a;
-      }
+    if (cur == 0 && order.size() == n) return order;
+    order.clear();
   }
-  // Component starts: a chain's end (degree 1) when there is one. Components
-  // and vertices on no segment go along a Hilbert curve, unless there is
-  // only one component covering everything (a polygon).
-  std::vector<VertexId> hilbert;
-  {
-    bool single = true;
-    for (std::size_t v = 0; v < n && single; ++v) single = start[v + 1] - start[v] == 2;
-    if (single && n > 0) {
-      // Every vertex has two segments: one cycle if the walk from 0 sees all.
-      std::size_t len = 1;
-      VertexId prev = 0, cur = adj[start[0]];
-      while (cur != 0 && len <= n) {
-        const VertexId next = adj[start[cur]] == prev ? adj[start[cur] + 1] : adj[start[cur]];
-        prev = cur;
-        cur = next;
-        ++len;
-      }
-      single = cur == 0 && len == n;
-    }
-    if (single) {
-      hilbert.push_back(0);  // only the root matters
-    } else {
-      hilbert = hilbert_order(pslg.points);
-    }
-  }
+  // Otherwise components go along a Hilbert curve (by the first vertex met),
+  // each from a chain's end (degree 1) when there is one, depth first; then
+  // the vertices on no segment, along the curve.
+  const std::vector<VertexId> hilbert = hilbert_order(pslg.points);
   std::vector<char> seen(n, 0);
   std::vector<VertexId> roots;
   {
@@ -92,17 +78,17 @@ std::vector<VertexId> chain_order(const Pslg& pslg) {
         const VertexId u = stack.back();
         stack.pop_back();
         if (start[u + 1] - start[u] == 1 && (start[root + 1] - start[root] != 1)) root = u;
-        for (std::uint32_t k = start[u]; k < start[u + 1]; ++k)
-          if (!in_comp[adj[k]]) {
-            in_comp[adj[k]] = 1;
-            stack.push_back(adj[k]);
+        for (std::uint32_t k = start[u]; k < start[u + 1]; ++k) {
+          const VertexId w = other(k, u);
+          if (!in_comp[w]) {
+            in_comp[w] = 1;
+            stack.push_back(w);
           }
+        }
       }
       roots.push_back(root);
     }
   }
-  std::vector<VertexId> order;
-  order.reserve(n);
   std::vector<std::pair<VertexId, std::uint32_t>> dfs;  // vertex, next adjacency slot
   for (VertexId root : roots) {
     seen[root] = 1;
@@ -110,12 +96,12 @@ std::vector<VertexId> chain_order(const Pslg& pslg) {
     dfs.push_back({root, start[root]});
     while (!dfs.empty()) {
       auto& [u, k] = dfs.back();
-      while (k < start[u + 1] && seen[adj[k]]) ++k;
+      while (k < start[u + 1] && seen[other(k, u)]) ++k;
       if (k == start[u + 1]) {
         dfs.pop_back();
         continue;
       }
-      const VertexId w = adj[k++];
+      const VertexId w = other(k++, u);
       seen[w] = 1;
       order.push_back(w);
       dfs.push_back({w, start[w]});
@@ -195,7 +181,7 @@ VertexId CdtBuilder::insert_vertex(VertexId v, HalfEdgeId near) {
       break;
     }
     const HalfEdgeId g = tw_[exit];
-    if (ghost(tri_of(g))) {
+    if (tv_[prev_edge(g)] == kInfinite) {  // entered by a real edge: a ghost has its apex at infinity
       loc.kind = Location::Kind::Outside;
       loc.tri = tri_of(g);
       break;
@@ -367,7 +353,27 @@ bool chain_order_cdt(Mesh& mesh, const Pslg& pslg, const CdtOptions& options, Cd
                      std::vector<VertexId>& first_copy) {
   const std::size_t n = pslg.points.size();
   check_coordinates(pslg.points);
-  const std::vector<VertexId> order = chain_order(pslg);
+  // Segments by vertex (zero-length ones left out and counted).
+  std::vector<std::uint32_t> start(n + 1, 0);
+  for (const Segment& s : pslg.segments)
+    if (s.a != s.b) {
+      ++start[s.a + 1];
+      ++start[s.b + 1];
+    } else {
+      ++st.zero_length_segments;
+    }
+  for (std::size_t v = 0; v < n; ++v) start[v + 1] += start[v];
+  std::vector<std::uint32_t> inc(start[n]);
+  {
+    std::vector<std::uint32_t> fill(start.begin(), start.end() - 1);
+    for (std::uint32_t i = 0; i < pslg.segments.size(); ++i) {
+      const Segment& s = pslg.segments[i];
+      if (s.a == s.b) continue;
+      inc[fill[s.a]++] = i;
+      inc[fill[s.b]++] = i;
+    }
+  }
+  const std::vector<VertexId> order = chain_order(pslg, start, inc);
   const std::vector<Point>& pts = pslg.points;
   // The first triangle: the first vertex, the next distinct one, the next one off their line.
   std::size_t i1 = 1;
@@ -396,27 +402,6 @@ bool chain_order_cdt(Mesh& mesh, const Pslg& pslg, const CdtOptions& options, Cd
     }
   }
   mesh.recount();
-
-  // Segments by vertex.
-  std::vector<std::uint32_t> start(n + 1, 0);
-  for (const Segment& s : pslg.segments)
-    if (s.a != s.b) {
-      ++start[s.a + 1];
-      ++start[s.b + 1];
-    } else {
-      ++st.zero_length_segments;
-    }
-  for (std::size_t v = 0; v < n; ++v) start[v + 1] += start[v];
-  std::vector<std::uint32_t> inc(start[n]);
-  {
-    std::vector<std::uint32_t> fill(start.begin(), start.end() - 1);
-    for (std::uint32_t i = 0; i < pslg.segments.size(); ++i) {
-      const Segment& s = pslg.segments[i];
-      if (s.a == s.b) continue;
-      inc[fill[s.a]++] = i;
-      inc[fill[s.b]++] = i;
-    }
-  }
 
   first_copy.assign(n, kNone);
   CdtBuilder builder(mesh, pslg, options, st);
@@ -447,7 +432,10 @@ bool chain_order_cdt(Mesh& mesh, const Pslg& pslg, const CdtOptions& options, Cd
     if (first_copy[v] != kNone) continue;  // v1, v2
     const VertexId got = builder.insert_vertex(v, near);
     first_copy[v] = got;
-    if (got != v) ++st.duplicate_vertices;
+    if (got >= n)
+      ++st.vertices_on_segments;  // exactly where segments inserted already cross: it takes that vertex's place
+    else if (got != v)
+      ++st.duplicate_vertices;
     near = mesh.out_edge(got);
     ready(v);
     ++inserted;
