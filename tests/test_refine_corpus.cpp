@@ -67,10 +67,14 @@ void run_corpus(dm::EncroachmentRule rule, double max_total_ratio, bool strict) 
     const dm::CheckReport rep = dm::check(mesh, {.convex_hull = false});
     // (A vertex where two holes touch fails the validator's one-fan rule
     // already in the CDT; refinement must not add problems elsewhere.)
-    if (cdt_valid) EXPECT_TRUE(rep.ok()) << rep.summary();
+    if (cdt_valid) {
+      EXPECT_TRUE(rep.ok()) << rep.summary();
+    }
     EXPECT_TRUE(dm::test::segments_conform(mesh, segs));
     // Every triangle left below the bound sits in an input angle under 60°.
-    if (strict) EXPECT_EQ(st.below_bound, st.below_small_input_angle) << st.summary();
+    if (strict) {
+      EXPECT_EQ(st.below_bound, st.below_small_input_angle) << st.summary();
+    }
     const auto qr = dm::quality_report(mesh, {.min_angle_deg = r.q});
     EXPECT_EQ(qr.below_angle, st.below_bound);
     // Per file: within a broad band of Triangle's count.
