@@ -134,7 +134,12 @@ class CdtBuilder {
     Quad quad;
     VertexId x, y, p, q;  // edge x->y, apex p on its left, q on its right
   };
-  std::vector<Event> events_;
+  std::vector<Event> events_;  // every event of the current piece
+  struct HeapEntry {
+    EventTime time;
+    std::uint32_t index;  // into events_
+  };
+  std::vector<HeapEntry> heap_;
   std::vector<std::uint32_t> cavity_stamp_;  // per triangle slot: == stamp_ when in the current cavity
   std::uint32_t stamp_ = 0;
 };

@@ -393,14 +393,37 @@ void CdtBuilder::recover_lifting(VertexId a, VertexId b, std::uint32_t seg) {
   add_slot(tri_of(crossings_[0]));
   for (HalfEdgeId h : crossings_) add_slot(tri_of(tw_[h]));
 
-  auto later = [&](const Event& p, const Event& q) {
-    int s = compare_times(p.time, q.time);
-    if (s == 0) s = compare_kinetic_times(pa, pb, p.quad, q.quad);
+  // Side of ab of each vertex, computed once per piece.
+  if (vstamp_.size() < pts_.size()) {
+    vstamp_.resize(pts_.size(), 0);
+    vpos_.resize(pts_.size(), 0);
+  }
+  if (++vstamp_now_ == 0) {
+    std::fill(vstamp_.begin(), vstamp_.end(), 0);
+    vstamp_now_ = 1;
+  }
+  const std::uint32_t sides = vstamp_now_;
+  auto side = [&](VertexId v) -> int {
+    if (vstamp_[v] != sides) {
+      const double o = orient2d(pa, pb, pt(v));
+      vstamp_[v] = sides;
+      vpos_[v] = o > 0 ? 2 : (o < 0 ? 0 : 1);
+    }
+    return static_cast<int>(vpos_[v]) - 1;
+  };
+  // The heap holds small entries (time interval, index into events_).
+  auto later = [&](const HeapEntry& hp, const HeapEntry& hq) {
+    int s = compare_times(hp.time, hq.time);
+    if (s != 0) return s > 0;
+    const Event& p = events_[hp.index];
+    const Event& q = events_[hq.index];
+    s = compare_kinetic_times(pa, pb, p.quad, q.quad);
     if (s != 0) return s > 0;
     if (edge_key(p.x, p.y) != edge_key(q.x, q.y)) return edge_key(p.x, p.y) > edge_key(q.x, q.y);
     return edge_key(p.p, p.q) > edge_key(q.p, q.q);
   };
   events_.clear();
+  heap_.clear();
   // An event for the edge of half-edge e, if it is inside the cavity and its
   // quadrilateral's lifted points will become coplanar.
   auto consider = [&](HalfEdgeId e) {
@@ -413,21 +436,31 @@ void CdtBuilder::recover_lifting(VertexId a, VertexId b, std::uint32_t seg) {
     ev.q = tv_[prev_edge(f)];
     const VertexId ids[4] = {ev.x, ev.y, ev.p, ev.q};
     bool right[4];
-    for (int i = 0; i < 4; ++i) right[i] = orient2d(pa, pb, pt(ids[i])) < 0;
+    bool any_left = false, any_right = false;
+    for (int i = 0; i < 4; ++i) {
+      const int o = side(ids[i]);
+      right[i] = o < 0;
+      any_right = any_right || o < 0;
+      any_left = any_left || o > 0;
+    }
+    // A quadrilateral on one (closed) side of ab moves by an affine function
+    // of the position: its edge never flips (R1 = 0).
+    if (!any_left || !any_right) return;
     ev.quad = Quad{pt(ev.x), pt(ev.y), pt(ev.p), pt(ev.q), right[0], right[1], right[2], right[3]};
     const KineticEvent k = kinetic_event(pa, pb, ev.quad);
     if (!k.happens) return;
     ev.time = k.time;
+    heap_.push_back({k.time, static_cast<std::uint32_t>(events_.size())});
     events_.push_back(ev);
-    std::push_heap(events_.begin(), events_.end(), later);
+    std::push_heap(heap_.begin(), heap_.end(), later);
   };
   for (HalfEdgeId h : crossings_) consider(h);
 
   bool ok = true;
-  while (!events_.empty()) {
-    std::pop_heap(events_.begin(), events_.end(), later);
-    const Event ev = events_.back();
-    events_.pop_back();
+  while (!heap_.empty()) {
+    std::pop_heap(heap_.begin(), heap_.end(), later);
+    const Event ev = events_[heap_.back().index];
+    heap_.pop_back();
     const HalfEdgeId e = mesh_.find_edge(ev.x, ev.y);
     if (e == kNone) continue;
     const HalfEdgeId f = tw_[e];
