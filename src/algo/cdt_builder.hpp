@@ -9,6 +9,7 @@
 
 #include "algo/cdt_lifting.hpp"
 #include "algo/insertion.hpp"
+#include "deltamesh/predicates.hpp"
 #include "deltamesh/cdt.hpp"
 #include "deltamesh/mesh.hpp"
 #include "deltamesh/pslg.hpp"
@@ -107,8 +108,21 @@ class CdtBuilder {
   std::size_t next_slot_ = 0, reserved_slots_ = 0;
   std::vector<HalfEdgeId> legal_;
   void split_and_legalize(TriId t, VertexId v);
-  double static_err_ = 0.0;  // see incircle_fast
-  double incircle_fast(const Point& a, const Point& b, const Point& c, const Point& d) const;
+  // incircle() with a static filter first: every coordinate difference is
+  // at most the input's bounding box extent (rounded up), so the permanent
+  // incircle's filter compares with is at most 12 box^4 and its error bound
+  // at most static_err_; a determinant beyond that needs no permanent. (The
+  // same operations as incircle's, so the same error analysis holds.)
+  double static_err_ = 0.0;
+  double incircle_fast(const Point& a, const Point& b, const Point& c, const Point& d) const {
+    const double adx = a.x - d.x, bdx = b.x - d.x, cdx = c.x - d.x;
+    const double ady = a.y - d.y, bdy = b.y - d.y, cdy = c.y - d.y;
+    const double det = (adx * adx + ady * ady) * (bdx * cdy - cdx * bdy) +
+                       (bdx * bdx + bdy * bdy) * (cdx * ady - adx * cdy) +
+                       (cdx * cdx + cdy * cdy) * (adx * bdy - bdx * ady);
+    if (det > static_err_ || -det > static_err_) return det;
+    return incircle(a, b, c, d);
+  }
   std::uint64_t rng_ = 0x9E3779B97F4A7C15ull;
   std::size_t max_steiner_ = 0;
   std::size_t piece_budget_ = 0;

@@ -12,6 +12,7 @@
 // of flips and walk steps proportional to the vertices inserted, and gives up
 // (the caller starts over the classic way) when it is exceeded.
 #include <algorithm>
+#include <limits>
 #include <span>
 #include <string>
 
@@ -197,20 +198,6 @@ VertexId CdtBuilder::insert_vertex(VertexId v, HalfEdgeId near) {
     return v;
   }
   return inserter_.insert_located(loc, v).vertex;
-}
-
-// incircle() with a static filter first: every coordinate difference is at
-// most box_ (the input's bounding box extent, rounded up), so the permanent
-// incircle's filter compares with is at most 12 box_^4 and its error bound
-// at most static_err_; a determinant beyond that needs no permanent.
-double CdtBuilder::incircle_fast(const Point& a, const Point& b, const Point& c, const Point& d) const {
-  const double adx = a.x - d.x, bdx = b.x - d.x, cdx = c.x - d.x;
-  const double ady = a.y - d.y, bdy = b.y - d.y, cdy = c.y - d.y;
-  const double det = (adx * adx + ady * ady) * (bdx * cdy - cdx * bdy) +
-                     (bdx * bdx + bdy * bdy) * (cdx * ady - adx * cdy) +
-                     (cdx * cdx + cdy * cdy) * (adx * bdy - bdx * ady);
-  if (det > static_err_ || -det > static_err_) return det;
-  return incircle(a, b, c, d);
 }
 
 void CdtBuilder::reserve_slots(std::size_t slots) {
@@ -425,18 +412,34 @@ bool chain_order_cdt(Mesh& mesh, const Pslg& pslg, const CdtOptions& options, Cd
     first_copy[v] = v;
     ready(v);
   }
-  HalfEdgeId near = mesh.out_edge(v0);
+  // The walk starts at the nearest of the last few vertices inserted: along
+  // a chain the next vertex is near one of them, not always the last (a
+  // star's vertices alternate between long and short radii).
+  constexpr int kRecent = 4;
+  VertexId recent[kRecent] = {v0, v1, v2, v2};
+  int next_recent = 0;
   std::size_t inserted = 3;
   for (std::size_t k = 1; k < n; ++k) {
     const VertexId v = order[k];
     if (first_copy[v] != kNone) continue;  // v1, v2
-    const VertexId got = builder.insert_vertex(v, near);
+    const Point& p = pts[v];
+    VertexId from = recent[0];
+    double best = std::numeric_limits<double>::infinity();
+    for (VertexId r : recent) {
+      const double dx = pts[r].x - p.x, dy = pts[r].y - p.y, d2 = dx * dx + dy * dy;
+      if (d2 < best) {
+        best = d2;
+        from = r;
+      }
+    }
+    const VertexId got = builder.insert_vertex(v, mesh.out_edge(from));
     first_copy[v] = got;
     if (got >= n)
       ++st.vertices_on_segments;  // exactly where segments inserted already cross: it takes that vertex's place
     else if (got != v)
       ++st.duplicate_vertices;
-    near = mesh.out_edge(got);
+    recent[next_recent] = got;
+    next_recent = (next_recent + 1) % kRecent;
     ready(v);
     ++inserted;
     if (builder.vertex_flips() > 12 * inserted + 4096 || builder.walk_steps() > 24 * inserted + 4096) return false;
