@@ -26,7 +26,7 @@ std::optional<CdtMethod> parse_cdt_method(std::string_view name);
 // Whether Fast first tries inserting the vertices along the segment chains
 // (see CdtStats::chain_order).
 enum class ChainOrder {
-  Auto,    // when the segments are long against the vertex spacing
+  Auto,    // when the segments are long against the vertex spacing, and chained
   Always,  // whatever the input (it still gives up when over budget)
   Never,   // the classic order only
 };
@@ -66,7 +66,8 @@ struct CdtStats {
   std::size_t crossings_snapped = 0;
   // When the segments are long against the spacing of the vertices (mean
   // length over twice sqrt(bounding box area / vertices): a star-shaped
-  // polygon, not a coastline), Fast first inserts the vertices along the
+  // polygon, not a coastline) and form chains (most of their vertices are
+  // shared by two segments), Fast first inserts the vertices along the
   // segment chains and each segment as soon as its endpoints are in
   // (chain_order: it did; vertices and segments are then timed together in
   // triangulate_seconds). It gives up when that order makes point location

@@ -356,10 +356,10 @@ using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
 // Are the segments long against the spacing of the vertices (their mean
-// length over twice sqrt(bounding box area / vertices))? Then, in the
-// classic order, each crosses many Delaunay edges and the chain order pays
-// (a star-shaped polygon: 26; coastlines and lakes: 0.05 to 0.6, where the
-// classic order is up to three times faster).
+// length over twice sqrt(bounding box area / vertices)), and chained? Then,
+// in the classic order, each crosses many Delaunay edges and the chain order
+// pays (a star-shaped polygon: 26; coastlines and lakes: 0.05 to 0.6, where
+// the classic order is up to three times faster).
 bool long_segments(const Pslg& pslg) {
   if (pslg.segments.empty() || pslg.points.size() < 3) return false;
   double x0 = pslg.points[0].x, x1 = x0, y0 = pslg.points[0].y, y1 = y0;
@@ -381,7 +381,21 @@ bool long_segments(const Pslg& pslg) {
     length += std::sqrt((a.x - b.x) * (a.x - b.x) + (a.y - b.y) * (a.y - b.y));
   }
   const double spacing = std::sqrt(area / static_cast<double>(pslg.points.size()));
-  return length / static_cast<double>(sampled) > 2.0 * spacing;
+  if (!(length / static_cast<double>(sampled) > 2.0 * spacing)) return false;
+  // ... and do they form chains (most segment vertices shared by exactly
+  // two)? Isolated segments gain nothing from the order: each one's far end
+  // is a long walk away.
+  std::vector<std::uint8_t> degree(pslg.points.size(), 0);
+  for (const Segment& s : pslg.segments) {
+    if (degree[s.a] < 3) ++degree[s.a];
+    if (degree[s.b] < 3) ++degree[s.b];
+  }
+  std::size_t used = 0, inner = 0;
+  for (std::uint8_t d : degree) {
+    used += d > 0;
+    inner += d == 2;
+  }
+  return 2 * inner >= used;
 }
 
 // Relabels vertex `from` as `to` around its fan.
