@@ -13,10 +13,16 @@ namespace deltamesh {
 
 enum class CdtMethod {
   Fast,     // default: the triangles crossed by the segment are removed and the two
-            // pseudo-polygons on either side retriangulated (constrained Delaunay)
+            // pseudo-polygons on either side retriangulated (constrained Delaunay, recursive
+            // empty-circle choice); vertices inserted along the segment chains when that
+            // pays (ChainOrder)
   Ct,       // §1.2: rotary traversal + queue of flips; a constrained triangulation, not always Delaunay
-  Lawson,   // §2.2: Ct, then constrained Lawson flips on the new edges: the CDT
-  Lifting,  // §2.3: flips ordered through the lifting map (priority queue): the CDT
+  Lawson,   // §2.2: Ct, then constrained Lawson flips over the changed region: the CDT
+  Lifting,  // §2.3: flips ordered by a motion of the lifted points, in a priority queue of
+            // exact event times: the CDT. The motion is not equation (1)'s (lowering the
+            // segment's endpoints does not give the CDT; see src/algo/cdt_lifting.hpp) but
+            // one that raises the vertices on one side of the segment in proportion to their
+            // distance from its line.
 };
 
 // "fast", "ct", "lawson", "lifting".
@@ -44,7 +50,7 @@ struct CdtOptions {
 
 struct CdtStats {
   std::size_t segments_inserted = 0;         // input segments of nonzero length
-  std::size_t segments_already_present = 0;  // ... that were an edge of the Delaunay triangulation already
+  std::size_t segments_already_present = 0;  // ... that were an edge already when inserted
   std::size_t flips = 0;                 // edge flips performed while recovering segments (Ct, Lawson, Lifting)
   std::size_t edges_crossed = 0;         // edges crossed by the segment pieces that had to be recovered
   std::size_t cavity_triangles = 0;      // Fast: triangles removed and retriangulated
@@ -53,10 +59,12 @@ struct CdtStats {
   std::size_t overlaps_merged = 0;       // segment pieces that were constrained already (collinear overlaps)
   std::size_t zero_length_segments = 0;  // ignored, with a warning
   std::size_t duplicate_vertices = 0;
-  // Robustness fallbacks (normally 0): Ct stalled or Lifting met an
-  // unflippable edge (degenerate input) and the piece was finished by Fast;
-  // a rounded intersection point did not fall inside the two triangles of
-  // the crossed edge and was inserted as a free vertex instead.
+  // Pieces finished by another method: Ct stalled (the seed's rule (2) can
+  // leave no flippable edge: frequent), Lifting met an unflippable edge
+  // (cannot happen; a guard) and Fast finished the piece; or Fast met a
+  // cavity that encloses triangles it does not contain and Lifting did it.
+  // intersection_fallbacks: a rounded crossing point did not fall inside the
+  // two triangles of the crossed edge and was inserted as a free vertex.
   std::size_t method_fallbacks = 0;
   std::size_t intersection_fallbacks = 0;
   // Crossings within a few rounding errors (64 ulps of the coordinates) of
@@ -88,10 +96,11 @@ struct CdtStats {
 //
 // Degenerate input is handled as users expect: a vertex exactly on a segment
 // splits it; collinear overlapping segments merge (an edge of several keeps
-// the marker of the lowest-numbered one with a nonzero marker); crossing segments (topology decided by
-// exact predicates) get their intersection inserted as a new vertex, the
-// point rounded to doubles, and both are split there (IntersectingSegments
-// instead under options.strict); zero-length segments are ignored and counted.
+// the marker of the lowest-numbered one with a nonzero marker); crossing
+// segments (topology decided by exact predicates) get their intersection
+// inserted as a new vertex, the point rounded to doubles, and both are split
+// there (IntersectingSegments instead under options.strict); zero-length
+// segments are ignored and counted.
 // Throws InputError for a segment endpoint out of range, for input the
 // Delaunay step rejects (non-finite, fewer than 3 distinct or all collinear
 // points), and if the number of added vertices exceeds the number of segment
