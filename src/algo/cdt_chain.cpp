@@ -422,11 +422,12 @@ bool chain_order_cdt(Mesh& mesh, const Pslg& pslg, const CdtOptions& options, Cd
   for (std::size_t k = 1; k < n; ++k) {
     const VertexId v = order[k];
     if (first_copy[v] != kNone) continue;  // v1, v2
-    const Point& p = pts[v];
+    const Point p = pts[v];
     VertexId from = recent[0];
     double best = std::numeric_limits<double>::infinity();
-    for (VertexId r : recent) {
-      const double dx = pts[r].x - p.x, dy = pts[r].y - p.y, d2 = dx * dx + dy * dy;
+    for (VertexId r : recent) {  // (r may be a vertex added at a crossing: read the mesh's points)
+      const Point& q = mesh.point(r);
+      const double dx = q.x - p.x, dy = q.y - p.y, d2 = dx * dx + dy * dy;
       if (d2 < best) {
         best = d2;
         from = r;
