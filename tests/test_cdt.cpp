@@ -236,7 +236,7 @@ TEST(CdtDifferential, StarPolygons) {
 }
 
 TEST(CdtDifferential, ManyScales) {
-  for (double s : {1e-9, 1e-3, 1e3, 1e9}) {
+  for (double s : {1e-40, 1e-9, 1e-3, 1e3, 1e9, 1e40}) {
     expect_methods_agree(scaled(random_pslg(300, 100, 42), s), "random scaled " + std::to_string(s));
     expect_methods_agree(scaled(gen::star_polygon(500, 3), s), "star scaled " + std::to_string(s));
   }
@@ -678,6 +678,15 @@ TEST(CdtLifting, KineticEvents) {
   const int s = detail::compare_kinetic_times(a, b, deeper, cross);
   EXPECT_EQ(s, k2.time.t < k.time.t ? -1 : 1);
   EXPECT_EQ(detail::compare_kinetic_times(a, b, cross, deeper), -s);
+  // The exact comparison (degree 8) holds at the ends of the coordinate range.
+  for (double scale : {0x1p-150, 0x1p150}) {
+    auto sp = [&](const Point& q) { return Point{q.x * scale, q.y * scale}; };
+    auto sq = [&](const detail::Quad& k) {
+      return detail::Quad{sp(k.x), sp(k.y), sp(k.p), sp(k.q), k.rx, k.ry, k.rp, k.rq};
+    };
+    EXPECT_EQ(detail::compare_kinetic_times(sp(a), sp(b), sq(deeper), sq(cross)), s) << scale;
+    EXPECT_EQ(detail::compare_kinetic_times(sp(a), sp(b), sq(cross), sq(cross)), 0) << scale;
+  }
 }
 
 // ---------------------------------------------------------------------------

@@ -2,6 +2,7 @@
 // exact comparisons (see cdt_lifting.hpp).
 #include "algo/cdt_lifting.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <utility>
@@ -190,9 +191,22 @@ KineticEvent kinetic_event(const Point& a, const Point& b, const Quad& k) {
 }
 
 int compare_kinetic_times(const Point& a, const Point& b, const Quad& k1, const Quad& k2) {
-  // t = -R0 / R1 with R1 > 0: t1 - t2 has the sign of R0_2 R1_1 - R0_1 R1_2.
-  const Exp r0a = exact_d(k1.x, k1.y, k1.p, k1.q), r1a = exact_r1(a, b, k1);
-  const Exp r0b = exact_d(k2.x, k2.y, k2.p, k2.q), r1b = exact_r1(a, b, k2);
+  // t = -R0 / R1 with R1 > 0: t1 - t2 has the sign of R0_2 R1_1 - R0_1 R1_2,
+  // a degree-8 polynomial. Scaling every point by the same power of two
+  // (exact) scales R0 and R1 alike and keeps the sign; bringing the largest
+  // coordinate near 1 keeps the products clear of overflow, and of underflow
+  // as long as the nonzero coordinates span at most 2^80 (the caller's check).
+  int e = 0;
+  double big = 0.0;
+  for (const Point* q : {&a, &b, &k1.x, &k1.y, &k1.p, &k1.q, &k2.x, &k2.y, &k2.p, &k2.q})
+    big = std::max({big, std::fabs(q->x), std::fabs(q->y)});
+  if (big > 0.0) std::frexp(big, &e);
+  auto s = [&](const Point& q) { return Point{std::ldexp(q.x, -e), std::ldexp(q.y, -e)}; };
+  auto sq = [&](const Quad& k) { return Quad{s(k.x), s(k.y), s(k.p), s(k.q), k.rx, k.ry, k.rp, k.rq}; };
+  const Point sa = s(a), sb = s(b);
+  const Quad q1 = sq(k1), q2 = sq(k2);
+  const Exp r0a = exact_d(q1.x, q1.y, q1.p, q1.q), r1a = exact_r1(sa, sb, q1);
+  const Exp r0b = exact_d(q2.x, q2.y, q2.p, q2.q), r1b = exact_r1(sa, sb, q2);
   return sign(sub(mul(r0b, r1a), mul(r0a, r1b)));
 }
 
@@ -236,14 +250,21 @@ EventTime seed_event_time(const Point& a, const Point& b, const Point& c, const 
   return r;
 }
 
-int compare_seed_event_times(const Point& a, const Point& b, const Point& c1, const Point& d1, const Point& c2,
-                             const Point& d2) {
+int compare_seed_event_times(const Point& a0, const Point& b0, const Point& c10, const Point& d10,
+                             const Point& c20, const Point& d20) {
+  // Degree 6: scaled by a power of two first, as in compare_kinetic_times.
+  int e = 0;
+  double big = 0.0;
+  for (const Point* q : {&a0, &b0, &c10, &d10, &c20, &d20}) big = std::max({big, std::fabs(q->x), std::fabs(q->y)});
+  if (big > 0.0) std::frexp(big, &e);
+  auto s = [&](const Point& q) { return Point{std::ldexp(q.x, -e), std::ldexp(q.y, -e)}; };
+  const Point a = s(a0), b = s(b0), c1 = s(c10), d1 = s(d10), c2 = s(c20), d2 = s(d20);
   const Exp dv1 = exact_d(a, b, c1, d1), kv1 = exact_k(a, b, c1, d1);
   const Exp dv2 = exact_d(a, b, c2, d2), kv2 = exact_k(a, b, c2, d2);
   // t1 - t2 = (D1 K2 - D2 K1) / (K1 K2).
-  const int s = sign(sub(mul(dv1, kv2), mul(dv2, kv1)));
+  const int sd = sign(sub(mul(dv1, kv2), mul(dv2, kv1)));
   const int sk = sign(kv1) * sign(kv2);
-  return s * sk;
+  return sd * sk;
 }
 
 }  // namespace deltamesh::detail

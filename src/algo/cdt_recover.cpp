@@ -7,6 +7,8 @@
 //   Lawson  - §2.2: Ct, then constrained Lawson flips over the changed region;
 //   Lifting - §2.3: flips in the order of the lifting-map event times.
 #include <algorithm>
+#include <cmath>
+#include <limits>
 #include <string>
 
 #include "algo/cdt_builder.hpp"
@@ -392,6 +394,33 @@ void CdtBuilder::recover_lifting(VertexId a, VertexId b, std::uint32_t seg) {
   };
   add_slot(tri_of(crossings_[0]));
   for (HalfEdgeId h : crossings_) add_slot(tri_of(tw_[h]));
+
+  // Exact comparisons of event times multiply degree-4 expansions
+  // (compare_kinetic_times scales the points by a power of two first): they
+  // stay exact when the nonzero coordinates of the cavity span at most a
+  // factor 2^80. Flips add no vertices, so checking the cavity's vertices
+  // suffices; beyond that range the piece is done by Fast (a fallback).
+  {
+    double lo = std::numeric_limits<double>::infinity(), hi = 0.0;
+    auto note = [&](const Point& q) {
+      for (const double c : {std::fabs(q.x), std::fabs(q.y)}) {
+        if (c == 0.0) continue;
+        lo = std::min(lo, c);
+        hi = std::max(hi, c);
+      }
+    };
+    note(pa);
+    note(pb);
+    for (HalfEdgeId h : crossings_) {
+      note(pt(tv_[h]));
+      note(pt(tv_[next_edge(h)]));
+    }
+    if (hi > 0.0 && hi > lo * 0x1p80) {
+      ++st_.method_fallbacks;
+      recover_fast(a, b, seg);
+      return;
+    }
+  }
 
   // Side of ab of each vertex, computed once per piece.
   if (vstamp_.size() < pts_.size()) {
