@@ -228,9 +228,35 @@ std::size_t TextReader::count_data_lines_left() const {
   return n;
 }
 
+namespace {
+
+// A token as it may appear in a message: bytes outside printable ASCII as
+// \xHH (a binary file must not put control characters or a NUL, which
+// would cut the message, on the user's terminal), and at most 40 bytes of
+// it (a token can be a whole megabyte of a corrupt file).
+std::string printable_token(std::string_view token) {
+  constexpr std::size_t kMax = 40;
+  static constexpr char kHex[] = "0123456789abcdef";
+  std::string out;
+  for (std::size_t i = 0; i < token.size() && i < kMax; ++i) {
+    const auto c = static_cast<unsigned char>(token[i]);
+    if (c >= 0x20 && c < 0x7f) {
+      out += static_cast<char>(c);
+    } else {
+      out += "\\x";
+      out += kHex[c >> 4];
+      out += kHex[c & 15];
+    }
+  }
+  if (token.size() > kMax) out += "...";
+  return out;
+}
+
+}  // namespace
+
 void TextReader::number_error(std::size_t i, NumberStatus s, const std::string& what) const {
   std::string msg = "'";
-  msg += tokens_[i];
+  msg += printable_token(tokens_[i]);
   switch (s) {
     case NumberStatus::NotAnInteger: msg += "' is not an integer"; break;
     case NumberStatus::OutOfRange: msg += "' is out of range"; break;
@@ -241,7 +267,7 @@ void TextReader::number_error(std::size_t i, NumberStatus s, const std::string& 
 }
 
 void TextReader::not_finite_error(std::size_t i, const std::string& what) const {
-  fail(what + " is not finite ('" + std::string(tokens_[i]) + "')");
+  fail(what + " is not finite ('" + printable_token(tokens_[i]) + "')");
 }
 
 }  // namespace deltamesh::io
