@@ -5,7 +5,7 @@ WERROR     ?= OFF
 CMAKE_ARGS ?=
 CLI        := $(BUILD)/bin/deltamesh
 
-.PHONY: all deps configure build demo test bench check-long clean
+.PHONY: all deps configure build demo test bench check-long clean test-sanitize fuzz
 
 all: build
 
@@ -32,6 +32,27 @@ test: deps build
 # Long soak and large-size runs, kept out of the default test run.
 check-long: deps build
 	@cd $(BUILD) && ctest --output-on-failure -j $(JOBS) -L long
+
+# The test suite under AddressSanitizer + UndefinedBehaviorSanitizer
+# ($(BUILD)-asan), then the thread-safety test under ThreadSanitizer
+# ($(BUILD)-tsan). DELTAMESH_TEST_QUICK=1 makes slow tests use smaller
+# inputs (tests honour it, see docs/robustness.md); "long" tests are skipped.
+# (gcc's -Wmaybe-uninitialized gives false positives under ASan, in <regex>.)
+SAN_FLAGS := -DCMAKE_BUILD_TYPE=RelWithDebInfo "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O2 -g1 -Wno-maybe-uninitialized" \
+             -DDELTAMESH_WERROR=$(WERROR)
+test-sanitize: deps
+	@cmake -S . -B $(BUILD)-asan $(SAN_FLAGS) -DDELTAMESH_SANITIZE=address,undefined $(CMAKE_ARGS) >/dev/null
+	@cmake --build $(BUILD)-asan -j $(JOBS)
+	@cd $(BUILD)-asan && DELTAMESH_TEST_QUICK=1 UBSAN_OPTIONS=print_stacktrace=1 \
+	  ctest --output-on-failure -j $(JOBS) -LE long
+	@cmake -S . -B $(BUILD)-tsan $(SAN_FLAGS) -DDELTAMESH_SANITIZE=thread $(CMAKE_ARGS) >/dev/null
+	@cmake --build $(BUILD)-tsan -j $(JOBS) --target test_threads
+	@DELTAMESH_TEST_QUICK=1 TSAN_OPTIONS="halt_on_error=1 second_deadlock_stack=1" $(BUILD)-tsan/bin/test_threads
+
+# libFuzzer targets (clang) run FUZZ_SECONDS each; see scripts/fuzz.sh.
+FUZZ_SECONDS ?= 60
+fuzz:
+	@FUZZ_SECONDS=$(FUZZ_SECONDS) scripts/fuzz.sh run
 
 bench: deps
 	@scripts/install-deps.sh bench || echo "bench: libcgal-dev not installed; CGAL peer skipped"
