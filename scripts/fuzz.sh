@@ -58,7 +58,10 @@ fuzz_one() {
   local corpus=$build/corpus/$t crashes=$build/crashes/$t log=$build/logs/$t.log
   mkdir -p "$corpus" "$crashes" "$(dirname "$log")"
   local dict=()
-  [ -f "fuzz/$t.dict" ] && dict=(-dict="fuzz/$t.dict")
+  case "$t" in
+    fuzz_node | fuzz_poly | fuzz_ele | fuzz_area) dict=(-dict=fuzz/triangle_formats.dict) ;;
+    *) [ -f "fuzz/$t.dict" ] && dict=(-dict="fuzz/$t.dict") ;;
+  esac
   local seeds=()
   [ -d "fuzz/corpus/$t" ] && seeds=("fuzz/corpus/$t")
   local rc=0
