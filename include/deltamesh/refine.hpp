@@ -29,6 +29,11 @@ enum class SteinerRule {
   // The circumcentre: with EncroachmentRule::DiametralCircle and
   // RefineOrder::WorstFirst this is exactly the seed's Figure 18 (Ruppert).
   Circumcenter,
+  // Best of a few points around the off-centre: among points that make a
+  // triangle within the bound with the shortest edge, the one whose
+  // insertion leaves the fewest bad triangles (then the farthest from other
+  // vertices); the off-centre when none beats it.
+  Best,
 };
 
 // When a vertex encroaches upon a subsegment.

@@ -208,6 +208,8 @@ class Refiner {
 
   // ---- Steiner points --------------------------------------------------------
   Point steiner_point(TriId t, const Eval& ev, bool& offcenter) const;
+  Point best_point(TriId t, const Eval& ev, const Point& primary);
+  bool score(TriId t, const Point& c, double shortest2, int& bad, double& radius2);
   Point split_point(VertexId a, VertexId b) const;
 
   // ---- location and cavities --------------------------------------------------
@@ -267,6 +269,8 @@ class Refiner {
   bool has_area_bounds_ = false;  // refine for the mesh's per-triangle bounds
   bool carry_bounds_ = false;     // the mesh has per-triangle bounds: keep them on new triangles
   bool shortest_first_ = true;    // queue order
+  bool best_ = false;             // SteinerRule::Best: choose among candidates
+  double bound_rad_ = 0;          // the angle bound in radians
   bool has_markers_ = false;
   double precision2_ = 0;       // squared shortest edge below which nothing is split
   double shell_cos_ = -2;       // input vertices whose smallest segment angle has a larger cosine get shells
@@ -320,6 +324,8 @@ void Refiner::setup() {
   shell_cos_ = std::cos(kShellApexAngle * std::numbers::pi / 180);
   small_cos2_ = std::cos(kWedgeAngle * std::numbers::pi / 180) * std::cos(kWedgeAngle * std::numbers::pi / 180);
   shortest_first_ = opt_.order == RefineOrder::ShortestEdgeFirst;
+  best_ = opt_.steiner == SteinerRule::Best && theta > 0;
+  bound_rad_ = rad;
   lens_ = opt_.encroachment == EncroachmentRule::DiametralLens && !opt_.conforming_delaunay;
   if (lens_) {
     const double phi = std::max(90.0, 180.0 - 2.0 * theta) * std::numbers::pi / 180.0;
@@ -642,6 +648,82 @@ Point Refiner::steiner_point(TriId t, const Eval& ev, bool& offcenter) const {
   return {P.x + 0.5 * dx + mx * s, P.y + 0.5 * dy + my * s};
 }
 
+
+// Scores candidate c for bad triangle t: its cavity must hold t, touch no
+// segment it encroaches, and keep c at least the shortest edge away from
+// every vertex (so no shorter edge than t's is made). `bad` counts the new
+// triangles that would still be skinny or too large; radius2 is the squared
+// distance to the nearest vertex.
+bool Refiner::score(TriId t, const Point& c, double shortest2, int& bad, double& radius2) {
+  const Walk w = walk(t, c);
+  if (w.kind != Walk::Found) return false;
+  if (w.edge != kNone && (fl_[w.edge] & kConstrained)) return false;
+  if (!cavity(c, w.tri)) return false;
+  if (std::find(cav_.begin(), cav_.end(), t) == cav_.end()) return false;
+  bad = 0;
+  radius2 = INFINITY;
+  for (const BoundaryEdge& b : bnd_) {
+    const Point& A = pts_[b.a];
+    const Point& B = pts_[b.b];
+    if ((b.flags & kConstrained) && encroaches(A, B, c)) return false;
+    const double la = dist2(A, c), lb = dist2(B, c), lab = dist2(A, B);
+    radius2 = std::min({radius2, la, lb});
+    const double cross = (B.x - A.x) * (c.y - A.y) - (B.y - A.y) * (c.x - A.x);
+    // sin of the smallest angle = cross / (product of the two longer edges).
+    const double lo = std::min({la, lb, lab});
+    const double den = la * lb * lab / lo;
+    if (cross * cross < sin2_bound_ * den) {
+      ++bad;
+      continue;
+    }
+    const double bound = area_bound(tri_of(b.inner), A, B, c);
+    if (bound > 0 && 0.5 * cross > bound) ++bad;
+  }
+  return radius2 >= shortest2;
+}
+
+// SteinerRule::Best: among points from which t's shortest edge PQ makes a
+// triangle within the angle bound (a grid over the petal of PQ, the region
+// where the angles at P, Q and the new vertex are all at least the bound),
+// the one whose insertion leaves the fewest bad triangles, then the one
+// farthest from every vertex; the off-centre when none is usable.
+Point Refiner::best_point(TriId t, const Eval& ev, const Point& primary) {
+  const HalfEdgeId e = 3 * t + ev.shortest;
+  const Point P = pts_[tv_[e]];
+  const Point Q = pts_[tv_[next_edge(e)]];
+  const double l = std::sqrt(ev.shortest2);
+  const double ux = (Q.x - P.x) / l, uy = (Q.y - P.y) / l;
+  const double nx = -uy, ny = ux;  // towards the triangle's third vertex (counter-clockwise)
+  const Point M{0.5 * (P.x + Q.x), 0.5 * (P.y + Q.y)};
+  const double ymax = (primary.x - M.x) * nx + (primary.y - M.y) * ny;
+  int best_bad = 0;
+  double best_r2 = 0;
+  Point best = primary;
+  if (!score(t, primary, ev.shortest2 * 0.999, best_bad, best_r2)) best_bad = 1 << 20, best_r2 = 0;
+  if (best_bad == 0) return primary;
+  const double tan_a = std::tan(bound_rad_);
+  static constexpr double kHeights[] = {0.87, 1.0, 1.15, 1.3, 1.5, 1.75, 2.0};
+  static constexpr double kShifts[] = {0.0, -0.2, 0.2, -0.4, 0.4};
+  for (const double hy : kHeights) {
+    const double y = hy * l;
+    if (y >= ymax) break;
+    for (const double sx : kShifts) {
+      const double s = sx * l;
+      // Angles at P and Q at least the bound, and at the new vertex.
+      if (y < tan_a * (0.5 * l + s) || y < tan_a * (0.5 * l - s)) continue;
+      const double a2 = (0.5 * l + s) * (0.5 * l + s) + y * y, b2 = (0.5 * l - s) * (0.5 * l - s) + y * y;
+      const double cross = l * y;
+      if (cross * cross * std::min({l * l, a2, b2}) < sin2_bound_ * l * l * a2 * b2) continue;
+      const Point c{M.x + s * ux + y * nx, M.y + s * uy + y * ny};
+      int bad;
+      double r2;
+      if (!score(t, c, ev.shortest2 * 0.999, bad, r2)) continue;
+      if (bad < best_bad || (bad == best_bad && r2 > best_r2)) best_bad = bad, best_r2 = r2, best = c;
+    }
+  }
+  return best;
+}
+
 // Where subsegment ab is split: on a concentric shell (a power-of-two
 // distance) around its input-vertex end when exactly one end is an input
 // vertex, so that the splits of segments meeting at an apex stay at equal
@@ -901,6 +983,7 @@ void Refiner::decide(TriId t, Decision& d) {
     d.reason = Reason::Precision;
     return;
   }
+  if (ev.skinny && best_) d.c = best_point(t, ev, d.c);
   const Walk w = walk(t, d.c);
   enc_scratch_.clear();
   switch (w.kind) {
@@ -1371,12 +1454,18 @@ RefineStats refine(Mesh& mesh, const RefineOptions& options) {
 }
 
 std::string_view to_string(SteinerRule r) {
-  return r == SteinerRule::Offcenter ? "offcenter" : "circumcenter";
+  switch (r) {
+    case SteinerRule::Best: return "best";
+    case SteinerRule::Offcenter: return "offcenter";
+    case SteinerRule::Circumcenter: break;
+  }
+  return "circumcenter";
 }
 
 std::optional<SteinerRule> parse_steiner_rule(std::string_view name) {
   if (name == "offcenter" || name == "off-center" || name == "offcentre") return SteinerRule::Offcenter;
   if (name == "circumcenter" || name == "circumcentre") return SteinerRule::Circumcenter;
+  if (name == "best") return SteinerRule::Best;
   return std::nullopt;
 }
 
