@@ -9,6 +9,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <set>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -473,6 +474,39 @@ TEST_F(Cli, SecondOrderTriangles) {
   for (std::size_t i = 1; i < ele.size(); ++i)
     for (std::size_t k = 1; k < 7; ++k) EXPECT_LE(std::stol(ele[i][k]), nv);
   EXPECT_GT(std::stol(ele[1][4]), std::stol(ele[1][1]));
+}
+
+// -r on a 6-node mesh refines the corner mesh: the old midpoint nodes are
+// dropped with a warning (Triangle would keep them as vertices in no
+// triangle), and -o2 writes new ones.
+TEST_F(Cli, RefiningASixNodeMeshDropsItsMidpoints) {
+  data("square_hole.poly");
+  ASSERT_EQ(run("-pqQ square_hole").code, 0);
+  const long corners = std::stol(table(path("square_hole.1.node"))[0][0]);
+  ASSERT_EQ(run("-pqo2Q square_hole").code, 0);
+  const long with_mid = std::stol(table(path("square_hole.1.node"))[0][0]);
+  ASSERT_GT(with_mid, corners);
+
+  Result r = run("-rpo2 square_hole.1");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_CONTAINS(r.err, "6-node triangles; " + std::to_string(with_mid - corners) + " midpoint nodes dropped");
+  // Same mesh again, not midpoints of midpoints.
+  EXPECT_EQ(std::stol(table(path("square_hole.2.node"))[0][0]), with_mid);
+  EXPECT_EQ(table(path("square_hole.2.ele"))[0][1], "6");
+  EXPECT_EQ(slurp(path("square_hole.2.ele")), slurp(path("square_hole.1.ele")));
+
+  r = run("-rqa0.1C square_hole.1");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_CONTAINS(r.err, "midpoint nodes dropped");
+  EXPECT_CONTAINS(r.out, "mesh is valid");
+  const auto node = table(path("square_hole.2.node"));
+  const auto ele = table(path("square_hole.2.ele"));
+  EXPECT_EQ(ele[0][1], "3");
+  // Every vertex but the input's unused one (in the hole) is a corner.
+  std::set<std::string> used;
+  for (std::size_t i = 1; i < ele.size(); ++i) used.insert(ele[i].begin() + 1, ele[i].begin() + 4);
+  EXPECT_EQ(used.size() + 1, std::stoul(node[0][0]));
+  EXPECT_TRUE(run("-rQ square_hole.1").err.empty());  // -Q: no warning
 }
 
 TEST_F(Cli, UsageErrors) {

@@ -394,38 +394,6 @@ TEST(Refine, MarkersAndAttributesCarried) {
   }
 }
 
-TEST(Refine, SecondOrderNodes) {
-  dm::Mesh mesh = square_with_hole();
-  dm::refine(mesh, opts([&](dm::RefineOptions& o) { o.min_angle_deg = 25; o.max_area = 0.01; }));
-  const dm::MidsideNodes so = dm::midside_nodes(mesh);
-  const auto rep = dm::quality_report(mesh);
-  // One node per edge.
-  std::size_t edges = 0;
-  for (dm::HalfEdgeId e = 0; e < mesh.triangle_vertices().size(); ++e)
-    if (mesh.twin(e) == dm::kNone || mesh.twin(e) > e) ++edges;
-  EXPECT_EQ(so.points.size(), edges);
-  EXPECT_EQ(so.markers.size(), edges);
-  for (dm::TriId t = 0; t < mesh.num_triangle_slots(); ++t) {
-    const auto v = mesh.triangle(t);
-    for (int k = 0; k < 3; ++k) {
-      const dm::VertexId node = so.tri_nodes[3 * t + k];
-      ASSERT_GE(node, mesh.num_vertices());
-      const dm::Point& p = so.points[node - mesh.num_vertices()];
-      const dm::Point& a = mesh.point(v[(k + 1) % 3]);
-      const dm::Point& b = mesh.point(v[(k + 2) % 3]);
-      EXPECT_EQ(p.x, 0.5 * (a.x + b.x));
-      EXPECT_EQ(p.y, 0.5 * (a.y + b.y));
-    }
-  }
-  (void)rep;
-  // As vertices of the mesh, for the writers' SecondOrderNodes hook.
-  const std::size_t n0 = mesh.num_vertices();
-  const std::vector<dm::VertexId> ids = dm::add_midside_vertices(mesh);
-  EXPECT_EQ(mesh.num_vertices(), n0 + so.points.size());
-  EXPECT_EQ(ids, so.tri_nodes);
-  expect_valid(mesh, false);
-}
-
 TEST(Quality, ReportTextAndJson) {
   dm::Mesh mesh = square_with_hole();
   const auto st = dm::refine(mesh, opts([&](dm::RefineOptions& o) { o.min_angle_deg = 30; }));

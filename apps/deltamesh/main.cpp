@@ -208,8 +208,7 @@ class Run {
     // (after -j and -C, which see the linear mesh).
     std::vector<dm::VertexId> midside;
     if (opt_.order == 2) {
-      if (!mesh.compacted()) mesh.compact();
-      midside = dm::add_midside_vertices(mesh);
+      midside = dm::add_midpoint_nodes(mesh);
       wopt.midside = midside;
     }
     std::vector<std::string> written;
@@ -292,8 +291,18 @@ class Run {
       regions_ = std::move(poly.regions);
     }
     input_path_ = ele_path;
-    const dm::EleData ele = dm::read_ele(ele_path, nodes.first_index);
+    dm::EleData ele = dm::read_ele(ele_path, nodes.first_index);
     phase("read", t);
+    if (!ele.midside.empty()) {
+      // A 6-node (-o2) mesh: refined as the corner mesh; its midpoint nodes
+      // would be vertices in no triangle, so they go (-o2 writes new ones).
+      const std::size_t dropped = dm::drop_midpoint_nodes(nodes, ele.triangles, ele.midside);
+      if (!opt_.quiet)
+        std::fprintf(stderr,
+                     "deltamesh: warning: %s has 6-node triangles; %zu midpoint nodes dropped, the other "
+                     "vertices renumbered in order%s\n",
+                     ele_path.c_str(), dropped, opt_.order == 2 ? " (-o2 writes new ones)" : " (add -o2 for new ones)");
+    }
     input_path_ = node_path;
     t = Clock::now();
     dm::Mesh mesh = dm::mesh_from_triangles(nodes, ele.triangles, ele.num_attributes, ele.attributes);

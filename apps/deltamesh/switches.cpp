@@ -336,7 +336,8 @@ Triangle's algorithm choices, accepted and mapped to deltamesh's (-V prints a no
   -s (--split-segments): segments are always recovered in a constrained
       triangulation; add -D for a conforming Delaunay mesh
   -o2 (--second-order): six-node triangles: a node at the midpoint of every
-      edge, in FILE.1.node and the 6-node FILE.1.ele, and in .msh/.vtu/.vtk outputs
+      edge, in FILE.1.node and the 6-node FILE.1.ele, and in .msh/.vtu/.vtk outputs;
+      -r on a 6-node mesh refines its corner mesh (old midpoints dropped)
 Not available (parsed, then refused): -u (--user-area: a size function
 compiled in; in the C++ API it is RefineOptions::max_area_at, thread-safe).
 

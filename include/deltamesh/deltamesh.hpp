@@ -12,6 +12,7 @@
 #include "deltamesh/pslg.hpp"
 #include "deltamesh/quality.hpp"
 #include "deltamesh/refine.hpp"
+#include "deltamesh/second_order.hpp"
 #include "deltamesh/svg.hpp"
 #include "deltamesh/triangle_io.hpp"
 #include "deltamesh/triangulate.hpp"

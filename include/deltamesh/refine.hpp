@@ -168,21 +168,4 @@ std::optional<SteinerRule> parse_steiner_rule(std::string_view name);          /
 std::string_view to_string(EncroachmentRule r);
 std::optional<EncroachmentRule> parse_encroachment_rule(std::string_view name);  // "circle", "lens"
 
-// Second-order (six-node) triangles, Triangle's -o2: one node at the midpoint
-// of every edge. Node k of triangle t (k = 0, 1, 2) sits on the edge opposite
-// triangle vertex k, as in Triangle's .ele files (nodes 4, 5, 6). Node ids
-// continue the mesh's vertex numbering: points[i] is node mesh.num_vertices() + i.
-struct MidsideNodes {
-  std::vector<Point> points;
-  std::vector<int> markers;          // the edge's segment marker, 1 on an unmarked boundary edge, else 0
-  std::vector<VertexId> tri_nodes;   // 3 per triangle slot
-};
-MidsideNodes midside_nodes(const Mesh& mesh);
-
-// The same nodes appended to the mesh as vertices in no triangle (markers
-// and zero attributes extended to them); returns 3 ids per triangle slot,
-// the form formats.hpp's SecondOrderNodes::midside takes. Requires a
-// compacted mesh (then slots are the output order).
-std::vector<VertexId> add_midside_vertices(Mesh& mesh);
-
 }  // namespace deltamesh

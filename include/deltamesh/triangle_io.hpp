@@ -20,7 +20,11 @@ Pslg read_poly(const std::string& path);
 // Triangles of an .ele file (3 or 6 nodes per triangle, first three kept),
 // re-based to 0; attributes kept per triangle.
 struct EleData {
-  std::vector<VertexId> triangles;  // 3 per triangle
+  std::vector<VertexId> triangles;  // 3 per triangle: the corners
+  // 6-node files (Triangle's -o2): nodes 4-6 of every triangle (3 per
+  // triangle; empty for 3-node files). second_order.hpp's
+  // drop_midpoint_nodes removes them from a mesh read back.
+  std::vector<VertexId> midside;
   std::size_t num_attributes = 0;
   std::vector<double> attributes;   // num_attributes per triangle
 };
@@ -35,9 +39,10 @@ struct TriangleWriteOptions {
   // Holes and regions write_poly lists after the segments (none by default).
   std::span<const Point> holes;
   std::span<const RegionSeed> regions;
-  // Six-node triangles (Triangle's -o2): 3 midside vertex ids per triangle
-  // slot (refine.hpp's add_midside_vertices), written by write_ele after the
-  // corners, node k on the edge opposite corner k. Empty: three-node triangles.
+  // Six-node triangles (Triangle's -o2): 3 midpoint node ids per triangle
+  // slot (second_order.hpp's add_midpoint_nodes), written by write_ele after
+  // the corners, node k on the edge opposite corner k. Empty: three-node
+  // triangles.
   std::span<const VertexId> midside;
 };
 

@@ -1479,48 +1479,4 @@ std::optional<EncroachmentRule> parse_encroachment_rule(std::string_view name) {
   return std::nullopt;
 }
 
-MidsideNodes midside_nodes(const Mesh& mesh) {
-  MidsideNodes out;
-  const std::size_t slots = mesh.num_triangle_slots();
-  out.tri_nodes.assign(3 * slots, kNone);
-  const auto base = static_cast<VertexId>(mesh.num_vertices());
-  for (TriId t = 0; t < slots; ++t) {
-    if (!mesh.is_real(t)) continue;
-    for (int i = 0; i < 3; ++i) {
-      const HalfEdgeId e = 3 * t + i;
-      // Node opposite vertex k lies on edge (k+1 -> k+2), i.e. half-edge 3t + (k+1)%3.
-      const int k = (i + 2) % 3;
-      if (out.tri_nodes[3 * t + k] != kNone) continue;
-      const VertexId id = base + static_cast<VertexId>(out.points.size());
-      const Point& a = mesh.point(mesh.origin(e));
-      const Point& b = mesh.point(mesh.dest(e));
-      out.points.push_back({0.5 * (a.x + b.x), 0.5 * (a.y + b.y)});
-      const HalfEdgeId f = mesh.twin(e);
-      int marker = 0;
-      if (mesh.is_constrained(e) || f == kNone) marker = mesh.edge_marker(e) != 0 ? mesh.edge_marker(e) : (f == kNone ? 1 : 0);
-      out.markers.push_back(marker);
-      out.tri_nodes[3 * t + k] = id;
-      if (f != kNone && mesh.is_real(tri_of(f))) {
-        const TriId u = tri_of(f);
-        const int ku = static_cast<int>((f % 3 + 2) % 3);
-        out.tri_nodes[3 * u + ku] = id;
-      }
-    }
-  }
-  return out;
-}
-
-std::vector<VertexId> add_midside_vertices(Mesh& mesh) {
-  MidsideNodes mid = midside_nodes(mesh);
-  const std::size_t n0 = mesh.num_vertices();
-  const bool markers = !mesh.vertex_markers().empty();
-  if (markers) mesh.vertex_markers().resize(n0, 0);
-  for (std::size_t i = 0; i < mid.points.size(); ++i) {
-    mesh.add_vertex(mid.points[i]);
-    if (markers) mesh.vertex_markers().push_back(mid.markers[i]);
-  }
-  mesh.vertex_attributes().resize(mesh.num_vertices() * mesh.num_vertex_attributes(), 0.0);
-  return std::move(mid.tri_nodes);
-}
-
 }  // namespace deltamesh

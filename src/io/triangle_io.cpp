@@ -483,6 +483,7 @@ EleData read_ele(const std::string& path, int first_index) {
       if (x - first_index >= static_cast<long long>(kInfinite))
         r.fail("triangle " + str(id) + " refers to vertex " + str(x) + ", which is too large");
       if (k < 3) v[k] = static_cast<VertexId>(x - first_index);
+      else d.midside.push_back(static_cast<VertexId>(x - first_index));
     }
     if (v[0] == v[1] || v[1] == v[2] || v[0] == v[2])
       r.fail("triangle " + str(id) + " uses vertex " + std::string(r.token(v[0] == v[1] || v[0] == v[2] ? 1 : 2)) +
