@@ -209,7 +209,7 @@ class Refiner {
   // ---- Steiner points --------------------------------------------------------
   Point steiner_point(TriId t, const Eval& ev, bool& offcenter) const;
   Point best_point(TriId t, const Eval& ev, const Point& primary);
-  bool score(TriId t, const Point& c, double shortest2, int& bad, double& radius2);
+  bool score(TriId t, const Point& c, double min2, int& bad, double& radius2);
   Point split_point(VertexId a, VertexId b) const;
 
   // ---- location and cavities --------------------------------------------------
@@ -649,26 +649,35 @@ Point Refiner::steiner_point(TriId t, const Eval& ev, bool& offcenter) const {
 }
 
 
-// Scores candidate c for bad triangle t: its cavity must hold t, touch no
-// segment it encroaches, and keep c at least the shortest edge away from
-// every vertex (so no shorter edge than t's is made). `bad` counts the new
-// triangles that would still be skinny or too large; radius2 is the squared
-// distance to the nearest vertex.
-bool Refiner::score(TriId t, const Point& c, double shortest2, int& bad, double& radius2) {
-  const Walk w = walk(t, c);
-  if (w.kind != Walk::Found) return false;
-  if (w.edge != kNone && (fl_[w.edge] & kConstrained)) return false;
-  if (!cavity(c, w.tri)) return false;
-  if (std::find(cav_.begin(), cav_.end(), t) == cav_.end()) return false;
+// Scores candidate c for bad triangle t: its cavity must hold t (c inside
+// t's circumcircle), be star-shaped from c, touch no segment c encroaches, and
+// keep c at least sqrt(min2) away from every vertex (no edge shorter than
+// t's). `bad` counts the new triangles that would still be skinny or too
+// large; radius2 is the squared distance to the nearest vertex. The cavity is
+// grown from t itself and checked in floating point: the chosen point is
+// located and its cavity built exactly afterwards by decide().
+bool Refiner::score(TriId t, const Point& c, double min2, int& bad, double& radius2) {
+  const HalfEdgeId b0 = 3 * t;
+  if (!(incircle(pts_[tv_[b0]], pts_[tv_[b0 + 1]], pts_[tv_[b0 + 2]], c) > 0)) return false;
+  cav_.clear();
+  bnd_.clear();
+  stack_.clear();
+  cav_.push_back(t);
+  stack_.push_back(b0 + 2);
+  stack_.push_back(b0 + 1);
+  stack_.push_back(b0);
+  if (!grow(c, 0)) return false;
   bad = 0;
   radius2 = INFINITY;
   for (const BoundaryEdge& b : bnd_) {
     const Point& A = pts_[b.a];
     const Point& B = pts_[b.b];
+    const double cross = (B.x - A.x) * (c.y - A.y) - (B.y - A.y) * (c.x - A.x);
+    if (!(cross > 0)) return false;
     if ((b.flags & kConstrained) && encroaches(A, B, c)) return false;
     const double la = dist2(A, c), lb = dist2(B, c), lab = dist2(A, B);
     radius2 = std::min({radius2, la, lb});
-    const double cross = (B.x - A.x) * (c.y - A.y) - (B.y - A.y) * (c.x - A.x);
+    if (radius2 < min2) return false;
     // sin of the smallest angle = cross / (product of the two longer edges).
     const double lo = std::min({la, lb, lab});
     const double den = la * lb * lab / lo;
@@ -679,14 +688,17 @@ bool Refiner::score(TriId t, const Point& c, double shortest2, int& bad, double&
     const double bound = area_bound(tri_of(b.inner), A, B, c);
     if (bound > 0 && 0.5 * cross > bound) ++bad;
   }
-  return radius2 >= shortest2;
+  return true;
 }
 
-// SteinerRule::Best: among points from which t's shortest edge PQ makes a
-// triangle within the angle bound (a grid over the petal of PQ, the region
-// where the angles at P, Q and the new vertex are all at least the bound),
-// the one whose insertion leaves the fewest bad triangles, then the one
-// farthest from every vertex; the off-centre when none is usable.
+// SteinerRule::Best: a search over the petal of t's shortest edge PQ (the
+// points from which PQ makes a triangle within the angle bound: above the
+// lines at the bound's angle from P and Q, inside the circle through P and Q
+// on which PQ subtends the bound). A coarse grid, then two rounds of local
+// refinement around the best point so far, pick the point whose insertion
+// leaves the fewest bad triangles, then the one farthest from every vertex.
+// On the corpus this gives ~10% (q30) to ~15% (q33) fewer triangles than the
+// off-centre alone; the off-centre is kept when it leaves none.
 Point Refiner::best_point(TriId t, const Eval& ev, const Point& primary) {
   const HalfEdgeId e = 3 * t + ev.shortest;
   const Point P = pts_[tv_[e]];
@@ -695,30 +707,43 @@ Point Refiner::best_point(TriId t, const Eval& ev, const Point& primary) {
   const double ux = (Q.x - P.x) / l, uy = (Q.y - P.y) / l;
   const double nx = -uy, ny = ux;  // towards the triangle's third vertex (counter-clockwise)
   const Point M{0.5 * (P.x + Q.x), 0.5 * (P.y + Q.y)};
-  const double ymax = (primary.x - M.x) * nx + (primary.y - M.y) * ny;
+  // Heights and shifts below are in units of l; the primary is the highest.
+  const double ymax = ((primary.x - M.x) * nx + (primary.y - M.y) * ny) / l;
+  const double min2 = ev.shortest2 * 0.999;  // no new edge shorter than PQ
   int best_bad = 0;
   double best_r2 = 0;
   Point best = primary;
-  if (!score(t, primary, ev.shortest2 * 0.999, best_bad, best_r2)) best_bad = 1 << 20, best_r2 = 0;
+  double best_y = ymax, best_s = 0;
+  if (!score(t, primary, min2, best_bad, best_r2)) best_bad = std::numeric_limits<int>::max(), best_r2 = 0;
   if (best_bad == 0) return primary;
   const double tan_a = std::tan(bound_rad_);
+  const auto consider = [&](double y, double s) {
+    if (y >= ymax || y <= 0) return;
+    // Angles at P and Q, then at the new vertex (sine rule), at least the bound.
+    if (y < tan_a * (0.5 + s) || y < tan_a * (0.5 - s)) return;
+    const double a2 = (0.5 + s) * (0.5 + s) + y * y, b2 = (0.5 - s) * (0.5 - s) + y * y;
+    if (y * y * std::min({1.0, a2, b2}) < sin2_bound_ * a2 * b2) return;
+    const Point c{M.x + l * (s * ux + y * nx), M.y + l * (s * uy + y * ny)};
+    int bad;
+    double r2;
+    if (!score(t, c, min2, bad, r2)) return;
+    if (bad < best_bad || (bad == best_bad && r2 > best_r2)) {
+      best_bad = bad, best_r2 = r2, best = c;
+      best_y = y, best_s = s;
+    }
+  };
   static constexpr double kHeights[] = {0.87, 1.0, 1.15, 1.3, 1.5, 1.75, 2.0};
-  static constexpr double kShifts[] = {0.0, -0.2, 0.2, -0.4, 0.4};
-  for (const double hy : kHeights) {
-    const double y = hy * l;
-    if (y >= ymax) break;
-    for (const double sx : kShifts) {
-      const double s = sx * l;
-      // Angles at P and Q at least the bound, and at the new vertex.
-      if (y < tan_a * (0.5 * l + s) || y < tan_a * (0.5 * l - s)) continue;
-      const double a2 = (0.5 * l + s) * (0.5 * l + s) + y * y, b2 = (0.5 * l - s) * (0.5 * l - s) + y * y;
-      const double cross = l * y;
-      if (cross * cross * std::min({l * l, a2, b2}) < sin2_bound_ * l * l * a2 * b2) continue;
-      const Point c{M.x + s * ux + y * nx, M.y + s * uy + y * ny};
-      int bad;
-      double r2;
-      if (!score(t, c, ev.shortest2 * 0.999, bad, r2)) continue;
-      if (bad < best_bad || (bad == best_bad && r2 > best_r2)) best_bad = bad, best_r2 = r2, best = c;
+  static constexpr double kShifts[] = {0.0, -0.25, 0.25, -0.5, 0.5, -0.75, 0.75, -1.0, 1.0};
+  for (const double y : kHeights)
+    for (const double s : kShifts) consider(y, s);
+  // Pattern search: step to the best neighbour while that improves, then halve.
+  for (double dy = 0.075, ds = 0.125; dy > 0.015 && best_bad > 0; dy *= 0.5, ds *= 0.5) {
+    for (int move = 0; move < 3 && best_bad > 0; ++move) {
+      const double y0 = best_y, s0 = best_s;
+      for (int i = -1; i <= 1; ++i)
+        for (int j = -1; j <= 1; ++j)
+          if (i != 0 || j != 0) consider(y0 + i * dy, s0 + j * ds);
+      if (best_y == y0 && best_s == s0) break;
     }
   }
   return best;
@@ -983,7 +1008,7 @@ void Refiner::decide(TriId t, Decision& d) {
     d.reason = Reason::Precision;
     return;
   }
-  if (ev.skinny && best_) d.c = best_point(t, ev, d.c);
+  if (ev.skinny && !ev.large && best_) d.c = best_point(t, ev, d.c);
   const Walk w = walk(t, d.c);
   enc_scratch_.clear();
   switch (w.kind) {
