@@ -227,14 +227,14 @@ class Refiner {
     return e.t < tv_.size() / 3 && tv_[3 * e.t] == e.a && tv_[3 * e.t + 1] == e.b && tv_[3 * e.t + 2] == e.c;
   }
   bool faces_small_angle(TriId t, const Eval& ev) const { return faces_small_angle(view(t), ev); }
-  bool faces_small_angle(const TriView& tv, const Eval& ev) const;
-  bool wedge_rule(const TriView& tv, const Eval& ev) const;
+  bool faces_small_angle(const TriView& tv, const Eval& ev, bool holding = true) const;
+  bool wedge_rule(const TriView& tv, const Eval& ev, bool holding) const;
   bool in_channel(const TriView& tv) const;
   bool channel_pair(std::uint32_t sa, std::uint32_t sb, double& gap2) const;
   bool near_channel(const Point& p, std::uint32_t sa, std::uint32_t sb, double gap2) const;
   template <class F>
   void spike_segments(VertexId v, std::uint32_t seg, F&& f) const;
-  bool left_alone(const TriView& tv) const;
+  bool left_alone(const TriView& tv, bool holding) const;
   void apexes(VertexId v, std::uint32_t seg, std::array<std::pair<VertexId, std::uint32_t>, 2>& small, int& n,
               std::vector<std::pair<VertexId, std::uint32_t>>& many) const;
 
@@ -669,15 +669,16 @@ void Refiner::apexes(VertexId v, std::uint32_t seg, std::array<std::pair<VertexI
 
 // Miller-Pav-Walkington: the shortest edge joins two different segments
 // that meet at an apex at an angle below 60°.
-bool Refiner::faces_small_angle(const TriView& tv, const Eval& ev) const {
-  if (wedge_rule(tv, ev)) return true;
+// holding: also a triangle that holds an input angle under the bound.
+bool Refiner::faces_small_angle(const TriView& tv, const Eval& ev, bool holding) const {
+  if (wedge_rule(tv, ev, holding)) return true;
   return has_spikes_ && in_channel(tv);
 }
 
-bool Refiner::wedge_rule(const TriView& tv, const Eval& ev) const {
+bool Refiner::wedge_rule(const TriView& tv, const Eval& ev, bool holding) const {
   // The triangle holds an input angle below the bound between two segments:
   // no split can remove that angle.
-  for (int i = 0; i < 3; ++i) {
+  for (int i = 0; i < 3 && holding; ++i) {
     const int j = (i + 1) % 3, k = (i + 2) % 3;
     if (tv.v[i] >= n_input_ || !tv.constrained[i] || !tv.constrained[k]) continue;
     const Point& A = tv.p[i];
@@ -793,9 +794,9 @@ bool Refiner::in_channel(const TriView& tv) const {
 }
 
 // A bad triangle the small-angle rules leave as it is.
-bool Refiner::left_alone(const TriView& tv) const {
+bool Refiner::left_alone(const TriView& tv, bool holding) const {
   const Eval ev = eval(tv.t, tv.p[0], tv.p[1], tv.p[2]);
-  return ev.skinny && !ev.large && faces_small_angle(tv, ev);
+  return ev.skinny && !ev.large && faces_small_angle(tv, ev, holding);
 }
 
 // ===========================================================================
@@ -1128,10 +1129,11 @@ bool Refiner::refuse_split(HalfEdgeId e, const Eval& ev) const {
 
 // Rule R1 yields when splitting the subsegment would only make triangles
 // the small-angle rules leave alone anyway: on each side where a vertex
-// encroaches, both halves of its triangle. Splitting would start the
-// cascade those rules avoid (in a thin channel, every subsegment of a side
-// is encroached from across; a narrow wedge's side by the other side's
-// end). Not with conforming Delaunay, which needs every split.
+// encroaches, both halves of its triangle, by the mid-wedge rule (wedges
+// under kWedgeAngle) or the channel rule. Splitting would start the cascade
+// those rules avoid (in a thin channel, every subsegment of a side is
+// encroached from across; a narrow wedge's side by the other side's end).
+// Not with conforming Delaunay, which needs every split.
 bool Refiner::excused(HalfEdgeId e) const {
   if (!opt_.small_angle_protection || opt_.conforming_delaunay) return false;
   const VertexId a = tv_[e], b = tv_[next_edge(e)];
@@ -1143,6 +1145,11 @@ bool Refiner::excused(HalfEdgeId e) const {
   bool any = false;
   for (const HalfEdgeId f : {e, tw_[e]}) {
     if (f == kNone || !encroaches(A, B, pts_[tv_[prev_edge(f)]])) continue;
+    const VertexId w = tv_[prev_edge(f)];
+    // Not where that vertex is itself an apex of angles under 60°: the
+    // shells around it refine there anyway, and the unsplit subsegment
+    // then drives a cascade into the apex (seen on ne110m_land at -q33).
+    if (w < n_input_ && apex_cos_[w] > shell_cos_) return false;
     // f = x -> y with apex w becomes x -> m -> w and m -> y -> w.
     const TriView whole = view(tri_of(f));
     const int i = static_cast<int>(f % 3), j = (i + 1) % 3, k = (i + 2) % 3;
@@ -1151,7 +1158,7 @@ bool Refiner::excused(HalfEdgeId e) const {
     h1.constrained[j] = false;  // m -> w
     h2.v[i] = mv, h2.p[i] = m, h2.seg[i] = seg;
     h2.constrained[k] = false;  // w -> m
-    if (!left_alone(h1) || !left_alone(h2)) return false;
+    if (!left_alone(h1, false) || !left_alone(h2, false)) return false;
     any = true;
   }
   return any;
