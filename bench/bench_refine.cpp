@@ -3,6 +3,11 @@
 // refine() against CGAL's refine_Delaunay_mesh_2 when CGAL is available.
 //
 //   bench_refine [--area A] [--q Q] [--runs N] [--peer cgal] [--offcenter|--circumcenter]
+//   bench_refine --star N [--seed S] [--q Q] [--area A] [--runs N] [--check]
+//
+// --star: instead, the star polygon of deltamesh-gen (N vertices, radii
+// uniform in [0.5, 1]; spikes with tiny input angles), CDT by triangulate(),
+// no area bound unless --area is given (deltamesh only).
 //
 // Prints one line per run and a summary: triangles, wall time, µs per
 // output triangle, and the process's peak resident memory per triangle
@@ -23,6 +28,7 @@
 #include "deltamesh-gen/generators.hpp"
 #include "deltamesh/delaunay.hpp"
 #include "deltamesh/refine.hpp"
+#include "deltamesh/triangulate.hpp"
 #include "deltamesh/validate.hpp"
 
 #ifdef DELTAMESH_HAVE_CGAL
@@ -115,7 +121,9 @@ std::size_t run_cgal(double q, double area, double& seconds) {
 int main(int argc, char** argv) {
   double area = 4.2e-7, q = 30;
   int runs = 1;
-  bool cgal = false, check = false;
+  bool cgal = false, check = false, area_set = false;
+  std::size_t star = 0;
+  std::uint64_t seed = 1;
   dm::RefineOptions opt;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
@@ -126,7 +134,9 @@ int main(int argc, char** argv) {
       }
       return argv[++i];
     };
-    if (a == "--area") area = std::atof(next());
+    if (a == "--area") area = std::atof(next()), area_set = true;
+    else if (a == "--star") star = std::strtoull(next(), nullptr, 10);
+    else if (a == "--seed") seed = std::strtoull(next(), nullptr, 10);
     else if (a == "--q") q = std::atof(next());
     else if (a == "--runs") runs = std::atoi(next());
     else if (a == "--peer" && std::string(next()) == "cgal") cgal = true;
@@ -134,10 +144,21 @@ int main(int argc, char** argv) {
     else if (a == "--offcenter") opt.steiner = dm::SteinerRule::Offcenter;
     else if (a == "--check") check = true;
     else {
-      std::fprintf(stderr, "usage: bench_refine [--area A] [--q Q] [--runs N] [--peer cgal] [--circumcenter] [--check]\n");
+      std::fprintf(stderr,
+                   "usage: bench_refine [--area A] [--q Q] [--runs N] [--peer cgal] [--circumcenter] [--check]\n"
+                   "       bench_refine --star N [--seed S] [--q Q] [--area A] [--runs N] [--check]\n");
       return 1;
     }
   }
+  if (star > 0 && star < 3) {
+    std::fprintf(stderr, "bench_refine: --star needs N >= 3\n");
+    return 1;
+  }
+  if (star > 0 && cgal) {
+    std::fprintf(stderr, "bench_refine: --star runs deltamesh only\n");
+    return 1;
+  }
+  if (star > 0 && !area_set) area = 0;
   std::vector<double> times;
   std::size_t tris = 0;
   if (cgal) {
@@ -156,7 +177,7 @@ int main(int argc, char** argv) {
     opt.min_angle_deg = q;
     opt.max_area = area;
     for (int r = 0; r < runs; ++r) {
-      dm::Mesh mesh = square_hole_domain();
+      dm::Mesh mesh = star > 0 ? dm::triangulate(dm::gen::star_polygon(star, seed)) : square_hole_domain();
       const auto t0 = Clock::now();
       const dm::RefineStats st = dm::refine(mesh, opt);
       const double s = std::chrono::duration<double>(Clock::now() - t0).count();
@@ -177,6 +198,7 @@ int main(int argc, char** argv) {
     if (std::fscanf(f, "%lf", &load) != 1) load = 0;
     std::fclose(f);
   }
+  if (star > 0) std::printf("star %zu seed %llu, ", star, static_cast<unsigned long long>(seed));
   std::printf("%s q%g a%g: %zu triangles, median %.3f s, %.3f us/triangle, peak RSS %.1f B/triangle (load %.2f)\n",
               cgal ? "cgal" : "deltamesh", q, area, tris, med, 1e6 * med / double(tris),
               peak_rss_bytes() / double(tris), load);

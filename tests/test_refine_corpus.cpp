@@ -77,10 +77,16 @@ void run_corpus(dm::EncroachmentRule rule, double max_total_ratio, bool strict) 
     }
     const auto qr = dm::quality_report(mesh, {.min_angle_deg = r.q});
     EXPECT_EQ(qr.below_angle, st.below_bound);
-    // Per file: within a broad band of Triangle's count.
+    // Per file: within a broad band of Triangle's count. The lower end only
+    // where we leave more triangles below the bound than Triangle does: the
+    // earcut_touching_holes fans of narrow wedges end with one triangle per
+    // wedge (the small-angle rules leave it; Triangle refines each wedge down
+    // to its apex), about a third of Triangle's count and fewer below.
     if (strict && r.triangles > 100) {
       EXPECT_LT(static_cast<double>(mesh.num_triangles()), 1.6 * r.triangles);
-      EXPECT_GT(static_cast<double>(mesh.num_triangles()), 0.4 * r.triangles);
+      if (static_cast<long>(st.below_bound) > r.below) {
+        EXPECT_GT(static_cast<double>(mesh.num_triangles()), 0.4 * r.triangles);
+      }
     }
     ours[r.q] += static_cast<long>(mesh.num_triangles());
     theirs[r.q] += r.triangles;
@@ -92,12 +98,17 @@ void run_corpus(dm::EncroachmentRule rule, double max_total_ratio, bool strict) 
     std::printf("q%g: %ld triangles (Triangle %ld, ratio %.4f); below the bound %ld (Triangle %ld)\n", q, n,
                 theirs[q], ratio, below_ours[q], below_theirs[q]);
     EXPECT_LT(ratio, max_total_ratio);
+    // The default leaves no more triangles below the bound than Triangle.
+    if (strict) {
+      EXPECT_LE(below_ours[q], below_theirs[q]);
+    }
   }
 }
 
 }  // namespace
 
-// The default (lenses): totals measured 0.988 (q30) and 0.993 (q33) of Triangle's.
+// The default (lenses): totals measured 0.985 (q30) and 0.990 (q33) of Triangle's;
+// below the bound 1026 (Triangle 1330) and 1660 (Triangle 1688).
 TEST(RefineCorpus, DiametralLenses) { run_corpus(dm::EncroachmentRule::DiametralLens, 1.02, true); }
-// The seed's circles: 1.03 (q30), 1.20 (q33).
+// The seed's circles: 1.02 (q30), 1.15 (q33).
 TEST(RefineCorpus, DiametralCircles) { run_corpus(dm::EncroachmentRule::DiametralCircle, 1.25, false); }

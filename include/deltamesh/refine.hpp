@@ -108,7 +108,11 @@ struct RefineOptions {
   bool conforming_delaunay = false;
   // §3.6: split segments on concentric shells around input vertices and
   // leave alone skinny triangles that sit in small input angles (< 60°),
-  // which is what makes refinement terminate on every input. Turning it off
+  // which is what makes refinement terminate on every input. Also left: the
+  // skinny triangles of thin channels between the sides of a spike (sides of
+  // a wedge under 10°, continued through bends under 30°, running within 10°
+  // of antiparallel closer than 1/64 of their length), and encroached
+  // subsegments whose split would only make such triangles. Turning it off
   // runs Figure 18 literally (midpoint splits, every skinny triangle split);
   // then only the budgets guarantee termination.
   bool small_angle_protection = true;
@@ -140,7 +144,7 @@ struct RefineStats {
 
   // Triangles still below the angle bound when refinement ended, and why.
   std::size_t below_bound = 0;
-  std::size_t below_small_input_angle = 0;  // in an input angle < 60° (§3.6): expected
+  std::size_t below_small_input_angle = 0;  // in an input angle < 60° or a spike's channel (§3.6): expected
   std::size_t below_segment_protected = 0;  // needed a split that -Y/-YY forbids
   std::size_t below_budget = 0;             // left when a budget/time limit stopped refinement
   std::size_t below_precision = 0;          // at the resolution of doubles: no distinct point fits

@@ -86,6 +86,17 @@ constexpr int kBuckets = 2048;
 constexpr double kOffcentreShrink = 0.98;
 constexpr double kShellApexAngle = 60.0;
 constexpr double kWedgeAngle = 10.0;
+// Thin channels (spikes): the sides of a wedge under kWedgeAngle, continued
+// through input vertices that bend less than kChannelBend, bound a channel
+// where two of them run within kChannelParallel of each other, closer than
+// 1/kChannelGap of their lengths. Refining there cascades down the spike
+// (a star polygon with 1e-4 rad spikes needs ~L/gap triangles per spike).
+constexpr double kChannelBend = 30.0;
+constexpr double kChannelParallel = 10.0;
+constexpr double kChannelGap = 64.0;
+// Triangles skipped for reasons that depend on their neighbours (a refused
+// or impossible segment split) get this many more looks once the queue runs dry.
+constexpr int kRequeueRounds = 4;
 
 // Why a bad triangle was left alone.
 enum class Reason : std::uint8_t { None, SmallAngle, Protected, Precision, Budget };
@@ -158,6 +169,16 @@ struct Eval {
   double shortest2 = 0;   // squared length of the shortest edge
 };
 
+// A triangle as the small-angle rules see it: a mesh triangle, or one a
+// segment split would make (its new vertex not in the mesh yet).
+struct TriView {
+  TriId t;                  // the mesh triangle (or the one split), for size bounds
+  VertexId v[3];            // counter-clockwise
+  Point p[3];
+  std::uint32_t seg[3];     // the segment a Steiner vertex lies on (kNone: none, or an input vertex)
+  bool constrained[3];      // edge v[i] -> v[i+1]
+};
+
 // A subsegment to split later: its vertices and a half-edge that may still be it.
 struct SubsegmentRef {
   VertexId a, b;
@@ -194,16 +215,27 @@ class Refiner {
   void setup();
   void reserve_for_area_bounds();
   std::uint32_t input_segment(VertexId a, VertexId b) const;
+  void mark_spikes();
 
   // ---- triangle quality ----------------------------------------------------
   double area_bound(TriId t, const Point& a, const Point& b, const Point& c) const;
   Eval eval(TriId t) const;
+  Eval eval(TriId t, const Point& a, const Point& b, const Point& c) const;
+  TriView view(TriId t) const;
   void consider(TriId t);
   bool alive(const QueueEntry& e) const {
     return e.t < tv_.size() / 3 && tv_[3 * e.t] == e.a && tv_[3 * e.t + 1] == e.b && tv_[3 * e.t + 2] == e.c;
   }
-  bool faces_small_angle(TriId t, const Eval& ev) const;
-  void apexes(VertexId v, std::array<std::pair<VertexId, std::uint32_t>, 2>& small, int& n,
+  bool faces_small_angle(TriId t, const Eval& ev) const { return faces_small_angle(view(t), ev); }
+  bool faces_small_angle(const TriView& tv, const Eval& ev, bool holding = true) const;
+  bool wedge_rule(const TriView& tv, const Eval& ev, bool holding) const;
+  bool in_channel(const TriView& tv) const;
+  bool channel_pair(std::uint32_t sa, std::uint32_t sb, double& gap2) const;
+  bool near_channel(const Point& p, std::uint32_t sa, std::uint32_t sb, double gap2) const;
+  template <class F>
+  void spike_segments(VertexId v, std::uint32_t seg, F&& f) const;
+  bool left_alone(const TriView& tv, bool holding) const;
+  void apexes(VertexId v, std::uint32_t seg, std::array<std::pair<VertexId, std::uint32_t>, 2>& small, int& n,
               std::vector<std::pair<VertexId, std::uint32_t>>& many) const;
 
   // ---- Steiner points --------------------------------------------------------
@@ -230,12 +262,14 @@ class Refiner {
   bool encroached(HalfEdgeId e) const;
   bool splittable(HalfEdgeId e) const;
   bool refuse_split(HalfEdgeId e, const Eval& ev) const;
+  bool excused(HalfEdgeId e) const;
   void check_encroached(HalfEdgeId e, VertexId apex);
 
   // ---- actions ------------------------------------------------------------------
   struct Decision {
     enum Kind { Skip, Split, Insert } kind = Skip;
     Reason reason = Reason::None;
+    bool transient = false;  // a skip that may change when neighbours change
     Point c;
     bool offcenter = false;
     std::vector<SubsegmentRef> segments;
@@ -275,6 +309,7 @@ class Refiner {
   double precision2_ = 0;       // squared shortest edge below which nothing is split
   double shell_cos_ = -2;       // input vertices whose smallest segment angle has a larger cosine get shells
   double small_cos2_ = 0.25;    // cos^2 of the largest input angle the small-angle rule treats as small
+  double channel_sin2_ = 0;     // sin^2 of the largest angle between the two sides of a channel
   std::vector<float> apex_cos_; // per input vertex: cosine of its smallest angle between segments (-2: none)
   std::size_t budget_ = kUnlimited;
   std::size_t n_input_ = 0;
@@ -282,6 +317,12 @@ class Refiner {
   // Input segments (the constrained edges when refinement starts).
   std::vector<std::array<VertexId, 2>> segs_;
   std::vector<std::uint8_t> seg_small_;      // bit 0/1: endpoint 0/1 is a small-angle apex for it
+  // Per segment: kBoundarySeg (domain on one side only, to the left of
+  // segs_[s][0] -> segs_[s][1]) and kSpikeSeg (a boundary side of a spike,
+  // see kChannelBend).
+  static constexpr std::uint8_t kBoundarySeg = 1, kSpikeSeg = 2;
+  std::vector<std::uint8_t> seg_spike_;
+  bool has_spikes_ = false;
   std::vector<std::uint32_t> adj_start_;     // CSR over input vertices
   std::vector<std::pair<VertexId, std::uint32_t>> adj_;  // (other endpoint, segment)
   std::vector<std::uint32_t> seg_of_;        // per Steiner vertex on a segment: its segment
@@ -291,6 +332,7 @@ class Refiner {
 
   BadQueue queue_;
   std::vector<SubsegmentRef> encroached_;
+  std::vector<QueueEntry> skipped_;  // transient skips, for another look
 
   // Scratch, reused by every insertion.
   std::vector<TriId> cav_;
@@ -304,6 +346,8 @@ class Refiner {
   std::size_t appended_ = 0;  // triangles appended without Mesh::add_triangle
   Clock::time_point start_;
   std::size_t iterations_ = 0;
+  int requeues_ = 0;
+  std::size_t requeue_mark_ = SIZE_MAX;  // Steiner points when the last requeue round began
   bool stopped_ = false;
 };
 
@@ -370,6 +414,7 @@ void Refiner::setup() {
     if (!(fl_[e] & kConstrained) || (tw_[e] != kNone && tw_[e] < e)) continue;
     const VertexId a = tv_[e], b = tv_[next_edge(e)];
     segs_.push_back({a, b});
+    seg_spike_.push_back(tw_[e] == kNone ? kBoundarySeg : 0);  // a boundary one runs with the domain on its left
     ++adj_start_[a + 1];
     ++adj_start_[b + 1];
   }
@@ -429,9 +474,12 @@ void Refiner::setup() {
         };
         add(s1, s2);
         add(s2, s1);
+        seg_spike_[s1] |= kSpikeSeg;
+        seg_spike_[s2] |= kSpikeSeg;
       }
     }
   }
+  mark_spikes();
   // Out-edges from scratch: any out-edge for an interior vertex, the
   // boundary one (most clockwise) for a boundary vertex, as compact() sets them.
   std::fill(ve_.begin(), ve_.end(), kNone);
@@ -440,6 +488,39 @@ void Refiner::setup() {
   seg_of_.assign(n_input_, kNone);
   if (!m_.vertex_markers().empty()) m_.vertex_markers().resize(n_input_, 0);
   reserve_for_area_bounds();
+}
+
+// Spike sides: from the sides of the narrow wedges, along chains of
+// segments through input vertices of two segments that bend less than
+// kChannelBend (linear: every segment is marked once).
+void Refiner::mark_spikes() {
+  channel_sin2_ = std::sin(kChannelParallel * std::numbers::pi / 180);
+  channel_sin2_ *= channel_sin2_;
+  const double bend_cos = std::cos((180.0 - kChannelBend) * std::numbers::pi / 180);  // < 0
+  std::vector<std::uint32_t> work;
+  for (std::uint32_t s = 0; s < segs_.size(); ++s) {
+    if (!(seg_spike_[s] & kBoundarySeg)) seg_spike_[s] = 0;  // channels between boundary sides only
+    if (seg_spike_[s] & kSpikeSeg) work.push_back(s);
+  }
+  has_spikes_ = !work.empty();
+  while (!work.empty()) {
+    const std::uint32_t s = work.back();
+    work.pop_back();
+    for (const VertexId w : segs_[s]) {
+      if (adj_start_[w + 1] - adj_start_[w] != 2) continue;
+      const auto [x0, s0] = adj_[adj_start_[w]];
+      const auto [x1, s1] = adj_[adj_start_[w] + 1];
+      const std::uint32_t next = s0 == s ? s1 : s0;
+      if (next == s || seg_spike_[next] != kBoundarySeg) continue;
+      const Point& W = pts_[w];
+      const double ux = pts_[x0].x - W.x, uy = pts_[x0].y - W.y, vx = pts_[x1].x - W.x, vy = pts_[x1].y - W.y;
+      const double dot = ux * vx + uy * vy;
+      // The angle at w is over 180° - kChannelBend: cos below bend_cos.
+      if (!(dot < 0 && dot * dot > bend_cos * bend_cos * (ux * ux + uy * uy) * (vx * vx + vy * vy))) continue;
+      seg_spike_[next] |= kSpikeSeg;
+      work.push_back(next);
+    }
+  }
 }
 
 std::uint32_t Refiner::input_segment(VertexId a, VertexId b) const {
@@ -502,11 +583,13 @@ double Refiner::area_bound(TriId t, const Point& a, const Point& b, const Point&
 }
 
 Eval Refiner::eval(TriId t) const {
-  Eval ev;
   const HalfEdgeId e = 3 * t;
-  const Point& a = pts_[tv_[e]];
-  const Point& b = pts_[tv_[e + 1]];
-  const Point& c = pts_[tv_[e + 2]];
+  return eval(t, pts_[tv_[e]], pts_[tv_[e + 1]], pts_[tv_[e + 2]]);
+}
+
+// Quality of triangle abc (counter-clockwise) under t's size bound.
+Eval Refiner::eval(TriId t, const Point& a, const Point& b, const Point& c) const {
+  Eval ev;
   const double l0 = dist2(a, b), l1 = dist2(b, c), l2 = dist2(c, a);
   const double cross = (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
   double lo = l0, o1 = l1, o2 = l2;
@@ -526,6 +609,19 @@ Eval Refiner::eval(TriId t) const {
     if (eb > 0 && std::max({l0, l1, l2}) > eb * eb) ev.large = true;
   }
   return ev;
+}
+
+TriView Refiner::view(TriId t) const {
+  TriView tv;
+  tv.t = t;
+  for (int i = 0; i < 3; ++i) {
+    const HalfEdgeId f = 3 * t + i;
+    tv.v[i] = tv_[f];
+    tv.p[i] = pts_[tv_[f]];
+    tv.seg[i] = tv_[f] >= n_input_ ? seg_of_[tv_[f]] : kNone;
+    tv.constrained[i] = (fl_[f] & kConstrained) != 0;
+  }
+  return tv;
 }
 
 void Refiner::consider(TriId t) {
@@ -552,12 +648,12 @@ void Refiner::consider(TriId t) {
 
 // The segments an apex candidate list holds for vertex v: (apex, segment)
 // pairs such that v lies on the segment and the apex is its other end.
-void Refiner::apexes(VertexId v, std::array<std::pair<VertexId, std::uint32_t>, 2>& two, int& n,
-                     std::vector<std::pair<VertexId, std::uint32_t>>& many) const {
+void Refiner::apexes(VertexId v, std::uint32_t seg, std::array<std::pair<VertexId, std::uint32_t>, 2>& two,
+                     int& n, std::vector<std::pair<VertexId, std::uint32_t>>& many) const {
   n = 0;
   many.clear();
   if (v >= n_input_) {
-    const std::uint32_t s = seg_of_[v];
+    const std::uint32_t s = seg;
     if (s == kNone || !seg_small_[s]) return;
     if (seg_small_[s] & 1) two[n++] = {segs_[s][0], s};
     if (seg_small_[s] & 2) two[n++] = {segs_[s][1], s};
@@ -573,28 +669,33 @@ void Refiner::apexes(VertexId v, std::array<std::pair<VertexId, std::uint32_t>, 
 
 // Miller-Pav-Walkington: the shortest edge joins two different segments
 // that meet at an apex at an angle below 60°.
-bool Refiner::faces_small_angle(TriId t, const Eval& ev) const {
+// holding: also a triangle that holds an input angle under the bound.
+bool Refiner::faces_small_angle(const TriView& tv, const Eval& ev, bool holding) const {
+  if (wedge_rule(tv, ev, holding)) return true;
+  return has_spikes_ && in_channel(tv);
+}
+
+bool Refiner::wedge_rule(const TriView& tv, const Eval& ev, bool holding) const {
   // The triangle holds an input angle below the bound between two segments:
   // no split can remove that angle.
-  for (int i = 0; i < 3; ++i) {
-    const HalfEdgeId f = 3 * t + i;
-    const VertexId v = tv_[f];
-    if (v >= n_input_ || !(fl_[f] & kConstrained) || !(fl_[prev_edge(f)] & kConstrained)) continue;
-    const Point& A = pts_[v];
-    const Point& B = pts_[tv_[next_edge(f)]];
-    const Point& C = pts_[tv_[prev_edge(f)]];
+  for (int i = 0; i < 3 && holding; ++i) {
+    const int j = (i + 1) % 3, k = (i + 2) % 3;
+    if (tv.v[i] >= n_input_ || !tv.constrained[i] || !tv.constrained[k]) continue;
+    const Point& A = tv.p[i];
+    const Point& B = tv.p[j];
+    const Point& C = tv.p[k];
     const double ux = B.x - A.x, uy = B.y - A.y, wx = C.x - A.x, wy = C.y - A.y;
     const double cross = ux * wy - uy * wx, l = (ux * ux + uy * uy) * (wx * wx + wy * wy);
     if (ux * wx + uy * wy > 0 && cross * cross < sin2_bound_ * l) return true;
   }
-  const HalfEdgeId e = 3 * t + ev.shortest;
-  const VertexId p = tv_[e], q = tv_[next_edge(e)];
+  const int ip = ev.shortest, iq = (ev.shortest + 1) % 3, ir = (ev.shortest + 2) % 3;
+  const VertexId p = tv.v[ip], q = tv.v[iq];
   std::array<std::pair<VertexId, std::uint32_t>, 2> tp, tq;
   int np = 0, nq = 0;
   thread_local std::vector<std::pair<VertexId, std::uint32_t>> mp, mq;
-  apexes(p, tp, np, mp);
+  apexes(p, tv.seg[ip], tp, np, mp);
   if (np == 0 && mp.empty()) return false;
-  apexes(q, tq, nq, mq);
+  apexes(q, tv.seg[iq], tq, nq, mq);
   if (nq == 0 && mq.empty()) return false;
   for (int i = 0; i < np; ++i) mp.push_back(tp[i]);
   for (int i = 0; i < nq; ++i) mq.push_back(tq[i]);
@@ -611,16 +712,91 @@ bool Refiner::faces_small_angle(TriId t, const Eval& ev) const {
       // ... and the triangle lies in the wedge between them: its third
       // vertex is inside the (convex, < 60°) cone at the apex. A triangle
       // beyond the wedge's mouth is skinny for other reasons and is split.
-      const VertexId r = tv_[prev_edge(e)];
+      const VertexId r = tv.v[ir];
       // On one of the two segments (split points are off their line by rounding).
-      if (r == op || r == oq || (r >= n_input_ && (seg_of_[r] == sp || seg_of_[r] == sq))) return true;
-      const Point& R = pts_[r];
+      if (r == op || r == oq || (r >= n_input_ && (tv.seg[ir] == sp || tv.seg[ir] == sq))) return true;
+      const Point& R = tv.p[ir];
       const double rx = R.x - A.x, ry = R.y - A.y;
       const double side = ux * wy - uy * wx;  // orientation of the cone u -> w
       const double s1 = ux * ry - uy * rx, s2 = rx * wy - ry * wx;
       if (side > 0 ? (s1 >= 0 && s2 >= 0) : (s1 <= 0 && s2 <= 0)) return true;
     }
   return false;
+}
+
+// The spike sides vertex v lies on (a Steiner vertex: its segment).
+template <class F>
+void Refiner::spike_segments(VertexId v, std::uint32_t seg, F&& f) const {
+  if (v >= n_input_) {
+    const std::uint32_t s = seg;
+    if (s != kNone && (seg_spike_[s] & kSpikeSeg)) f(s);
+    return;
+  }
+  for (std::uint32_t i = adj_start_[v]; i < adj_start_[v + 1]; ++i)
+    if (seg_spike_[adj_[i].second] & kSpikeSeg) f(adj_[i].second);
+}
+
+// Two spike sides that can bound a channel: boundary segments facing each
+// other, antiparallel within kChannelParallel (two pieces of one chain run
+// parallel; the sides of a notch face away, which near_channel rejects).
+// gap2: the squared width allowed, 1/kChannelGap of the shorter one.
+bool Refiner::channel_pair(std::uint32_t sa, std::uint32_t sb, double& gap2) const {
+  if (sa == sb) return false;
+  const auto [a0, a1] = segs_[sa];
+  const auto [b0, b1] = segs_[sb];
+  const double ux = pts_[a1].x - pts_[a0].x, uy = pts_[a1].y - pts_[a0].y;
+  const double wx = pts_[b1].x - pts_[b0].x, wy = pts_[b1].y - pts_[b0].y;
+  const double la2 = ux * ux + uy * uy, lb2 = wx * wx + wy * wy;
+  const double cross = ux * wy - uy * wx;
+  if (!(ux * wx + uy * wy < 0 && cross * cross < channel_sin2_ * la2 * lb2)) return false;
+  gap2 = std::min(la2, lb2) / (kChannelGap * kChannelGap);
+  return true;
+}
+
+// p lies in the strip between the two sides: on the domain side of both
+// lines (up to rounding) and closer than the allowed width to each.
+bool Refiner::near_channel(const Point& p, std::uint32_t sa, std::uint32_t sb, double gap2) const {
+  for (const std::uint32_t s : {sa, sb}) {
+    const Point& A = pts_[segs_[s][0]];
+    const Point& B = pts_[segs_[s][1]];
+    const double ux = B.x - A.x, uy = B.y - A.y;
+    const double l2 = ux * ux + uy * uy;
+    const double cross = ux * (p.y - A.y) - uy * (p.x - A.x);  // |u| times the signed distance
+    const double gap_l = std::sqrt(gap2 * l2);
+    if (cross < -1e-3 * gap_l || cross > gap_l) return false;
+  }
+  return true;
+}
+
+// A triangle in a thin channel between two spike sides (every vertex in
+// the channel, some vertex on each side): it cannot be made good without
+// refining the whole spike down to the channel's width, so it is left as
+// an input angle's triangle is.
+bool Refiner::in_channel(const TriView& tv) const {
+  std::array<std::uint32_t, 4> segs[3];
+  int n[3] = {0, 0, 0};
+  for (int i = 0; i < 3; ++i)
+    spike_segments(tv.v[i], tv.seg[i], [&](std::uint32_t s) {
+      if (n[i] < 4) segs[i][n[i]++] = s;
+    });
+  for (int i = 0; i < 3; ++i)
+    for (int j = i + 1; j < 3; ++j)
+      for (int x = 0; x < n[i]; ++x)
+        for (int y = 0; y < n[j]; ++y) {
+          double gap2;
+          const std::uint32_t sa = segs[i][x], sb = segs[j][y];
+          if (!channel_pair(sa, sb, gap2)) continue;
+          if (near_channel(tv.p[0], sa, sb, gap2) && near_channel(tv.p[1], sa, sb, gap2) &&
+              near_channel(tv.p[2], sa, sb, gap2))
+            return true;
+        }
+  return false;
+}
+
+// A bad triangle the small-angle rules leave as it is.
+bool Refiner::left_alone(const TriView& tv, bool holding) const {
+  const Eval ev = eval(tv.t, tv.p[0], tv.p[1], tv.p[2]);
+  return ev.skinny && !ev.large && faces_small_angle(tv, ev, holding);
 }
 
 // ===========================================================================
@@ -976,6 +1152,43 @@ bool Refiner::refuse_split(HalfEdgeId e, const Eval& ev) const {
   return part < ev.shortest2;
 }
 
+// Rule R1 yields when splitting the subsegment would only make triangles
+// the small-angle rules leave alone anyway: on each side where a vertex
+// encroaches, both halves of its triangle, by the mid-wedge rule (wedges
+// under kWedgeAngle) or the channel rule. Splitting would start the cascade
+// those rules avoid (in a thin channel, every subsegment of a side is
+// encroached from across; a narrow wedge's side by the other side's end).
+// Not with conforming Delaunay, which needs every split.
+bool Refiner::excused(HalfEdgeId e) const {
+  if (!opt_.small_angle_protection || opt_.conforming_delaunay) return false;
+  const VertexId a = tv_[e], b = tv_[next_edge(e)];
+  const Point& A = pts_[a];
+  const Point& B = pts_[b];
+  const std::uint32_t seg = a >= n_input_ ? seg_of_[a] : (b >= n_input_ ? seg_of_[b] : input_segment(a, b));
+  const Point m = split_point(a, b);
+  const auto mv = static_cast<VertexId>(pts_.size());  // the vertex the split would add
+  bool any = false;
+  for (const HalfEdgeId f : {e, tw_[e]}) {
+    if (f == kNone || !encroaches(A, B, pts_[tv_[prev_edge(f)]])) continue;
+    const VertexId w = tv_[prev_edge(f)];
+    // Not where that vertex is itself an apex of angles under 60°: the
+    // shells around it refine there anyway, and the unsplit subsegment
+    // then drives a cascade into the apex (seen on ne110m_land at -q33).
+    if (w < n_input_ && apex_cos_[w] > shell_cos_) return false;
+    // f = x -> y with apex w becomes x -> m -> w and m -> y -> w.
+    const TriView whole = view(tri_of(f));
+    const int i = static_cast<int>(f % 3), j = (i + 1) % 3, k = (i + 2) % 3;
+    TriView h1 = whole, h2 = whole;
+    h1.v[j] = mv, h1.p[j] = m, h1.seg[j] = seg;
+    h1.constrained[j] = false;  // m -> w
+    h2.v[i] = mv, h2.p[i] = m, h2.seg[i] = seg;
+    h2.constrained[k] = false;  // w -> m
+    if (!left_alone(h1, false) || !left_alone(h2, false)) return false;
+    any = true;
+  }
+  return any;
+}
+
 void Refiner::check_encroached(HalfEdgeId e, VertexId apex) {
   if (!(fl_[e] & kConstrained)) return;
   const VertexId a = tv_[e], b = tv_[next_edge(e)];
@@ -992,6 +1205,7 @@ void Refiner::check_encroached(HalfEdgeId e, VertexId apex) {
 void Refiner::decide(TriId t, Decision& d) {
   d.kind = Decision::Skip;
   d.reason = Reason::None;
+  d.transient = false;
   d.segments.clear();
   const Eval ev = eval(t);
   if (!ev.skinny && !ev.large) return;
@@ -1066,6 +1280,7 @@ void Refiner::decide_segments(const std::vector<HalfEdgeId>& enc, const Eval& ev
   if (d.segments.empty()) {
     d.kind = Decision::Skip;
     d.reason = why == Reason::None ? Reason::Precision : why;
+    d.transient = true;
   } else {
     d.kind = Decision::Split;
   }
@@ -1381,11 +1596,23 @@ void Refiner::run() {
       encroached_.pop_back();
       const HalfEdgeId e = edge(r.a, r.b, r.hint);
       if (e == kNone || !(fl_[e] & kConstrained) || !encroached(e) || !splittable(e)) continue;
+      if (excused(e)) continue;
       if (!budget_left()) break;
       split_segment(e);
       continue;
     }
-    if (queue_.empty()) break;
+    if (queue_.empty()) {
+      // Another look at the transient skips, a bounded number of times.
+      // Only while the last round changed the mesh: else the same skips come back.
+      if (skipped_.empty() || requeues_ >= kRequeueRounds || st_.steiner_points == requeue_mark_) break;
+      requeue_mark_ = st_.steiner_points;
+      ++requeues_;
+      std::vector<QueueEntry> again;
+      again.swap(skipped_);
+      for (const QueueEntry& s : again)
+        if (alive(s)) consider(s.t);
+      continue;
+    }
     st_.peak_queue = std::max(st_.peak_queue, queue_.size());
     const QueueEntry q = queue_.pop();
     if (!alive(q)) continue;
@@ -1393,6 +1620,7 @@ void Refiner::run() {
     switch (decision_.kind) {
       case Decision::Skip:
         if (decision_.reason == Reason::SmallAngle) ++st_.small_angle_skips;
+        if (decision_.transient) skipped_.push_back(q);
         break;
       case Decision::Insert:
         if (!budget_left()) break;
