@@ -2,7 +2,7 @@
 // -q30 with an area bound (about 4·10^6 triangles by default), deltamesh's
 // refine() against CGAL's refine_Delaunay_mesh_2 when CGAL is available.
 //
-//   bench_refine [--area A] [--q Q] [--runs N] [--peer cgal] [--offcenter|--circumcenter]
+//   bench_refine [--area A] [--q Q] [--runs N] [--peer cgal] [--best|--offcenter|--circumcenter]
 //   bench_refine --star N [--seed S] [--q Q] [--area A] [--runs N] [--check]
 //
 // --star: instead, the star polygon of deltamesh-gen (N vertices, radii
@@ -142,6 +142,7 @@ int main(int argc, char** argv) {
     else if (a == "--peer" && std::string(next()) == "cgal") cgal = true;
     else if (a == "--circumcenter") opt.steiner = dm::SteinerRule::Circumcenter;
     else if (a == "--offcenter") opt.steiner = dm::SteinerRule::Offcenter;
+    else if (a == "--best") opt.steiner = dm::SteinerRule::Best;
     else if (a == "--check") check = true;
     else {
       std::fprintf(stderr,

@@ -334,9 +334,11 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     }
     ropt.max_area = (hix - lox) * (hiy - loy) / 64.0;
   }
-  ropt.steiner = (f2 & 64) ? dm::SteinerRule::Circumcenter : dm::SteinerRule::Offcenter;
   ropt.encroachment = (f2 & 128) ? dm::EncroachmentRule::DiametralLens : dm::EncroachmentRule::DiametralCircle;
   const std::uint8_t f3 = in.ConsumeIntegral<std::uint8_t>();
+  ropt.steiner = (f2 & 64)   ? dm::SteinerRule::Circumcenter
+                 : (f3 & 64) ? dm::SteinerRule::Offcenter
+                             : dm::SteinerRule::Best;
   static constexpr dm::SegmentSplitting kSplitting[] = {dm::SegmentSplitting::All, dm::SegmentSplitting::All,
                                                         dm::SegmentSplitting::InteriorOnly,
                                                         dm::SegmentSplitting::None};

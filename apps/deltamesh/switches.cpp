@@ -198,7 +198,7 @@ Options parse_arguments(const std::vector<std::string>& args) {
       } else if (name == "--steiner") {
         const std::string v = value(name);
         const auto r = parse_steiner_rule(v);
-        if (!r) throw UsageError{"--steiner=" + v + ": the rule must be offcenter or circumcenter"};
+        if (!r) throw UsageError{"--steiner=" + v + ": the rule must be best, offcenter or circumcenter"};
         o.steiner = *r;
       } else if (name == "--encroachment") {
         const std::string v = value(name);
@@ -348,8 +348,9 @@ Long options:
   --fill=RULE      holes (default: Triangle's hole points and exterior) or
                    evenodd (keep odd nesting depth; no hole points needed)
   --strict         crossing segments are an error instead of being split
-  --steiner=RULE   refinement's Steiner points: offcenter (default, fewer
-                   triangles) or circumcenter (the seed's algorithm)
+  --steiner=RULE   refinement's Steiner points: best (default, fewest
+                   triangles), offcenter (quickest) or circumcenter (the
+                   seed's algorithm)
   --encroachment=RULE  lens (default) or circle (the seed's R1): when a
                    vertex near a segment makes it split
   --order=ORDER    shortest (default: shortest edge first) or worst (worst

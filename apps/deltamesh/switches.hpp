@@ -66,7 +66,7 @@ struct Options {
   // Refinement (with -q, -a, -S, -D): where Steiner points go, when a
   // vertex encroaches a segment, which bad triangle goes first, a time limit,
   // and the quality report as JSON on standard output.
-  SteinerRule steiner = SteinerRule::Offcenter;                     // --steiner=offcenter|circumcenter
+  SteinerRule steiner = SteinerRule::Best;                          // --steiner=best|offcenter|circumcenter
   EncroachmentRule encroachment = EncroachmentRule::DiametralLens;  // --encroachment=lens|circle
   RefineOrder refine_order = RefineOrder::ShortestEdgeFirst;        // --order=shortest|worst
   double time_limit = 0.0;                                          // --time-limit=SECONDS

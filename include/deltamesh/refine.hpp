@@ -24,15 +24,21 @@ namespace deltamesh {
 enum class SteinerRule {
   // Üngör's off-centre: on the bisector of the shortest edge, no farther from
   // it than the point that makes a triangle of exactly the angle bound with
-  // it; the circumcentre when that is nearer. Fewer triangles (default).
+  // it; the circumcentre when that is nearer. Fewer triangles than
+  // circumcentres, and the quickest rule.
   Offcenter,
   // The circumcentre: with EncroachmentRule::DiametralCircle and
   // RefineOrder::WorstFirst this is exactly the seed's Figure 18 (Ruppert).
   Circumcenter,
-  // Best of a few points around the off-centre: among points that make a
-  // triangle within the bound with the shortest edge, the one whose
-  // insertion leaves the fewest bad triangles (then the farthest from other
-  // vertices); the off-centre when none beats it.
+  // The off-centre when its insertion leaves no skinny triangle; otherwise
+  // the point of the shortest edge's petal (where that edge makes a triangle
+  // within the bound) whose insertion leaves the fewest skinny triangles,
+  // found by a coarse grid and a pattern search, each point scored by the
+  // cavity it would make (in the spirit of Erten and Üngör's locally optimal
+  // Steiner points). Next to triangles that break a size bound the off-centre
+  // is used as is. Default: on the corpus 14% (q30) to 19% (q33) fewer
+  // triangles than off-centres, for 2-4 times their refinement time when no
+  // size bound is given and about the same time with one.
   Best,
 };
 
@@ -98,7 +104,7 @@ struct RefineOptions {
   std::function<double(double x, double y)> max_area_at;
   std::function<double(double x, double y)> max_edge_at;
 
-  SteinerRule steiner = SteinerRule::Offcenter;
+  SteinerRule steiner = SteinerRule::Best;
   EncroachmentRule encroachment = EncroachmentRule::DiametralLens;
   RefineOrder order = RefineOrder::ShortestEdgeFirst;
   SegmentSplitting segment_splitting = SegmentSplitting::All;
@@ -168,7 +174,7 @@ struct RefineStats {
 RefineStats refine(Mesh& mesh, const RefineOptions& options = {});
 
 std::string_view to_string(SteinerRule r);
-std::optional<SteinerRule> parse_steiner_rule(std::string_view name);          // "offcenter", "circumcenter"
+std::optional<SteinerRule> parse_steiner_rule(std::string_view name);          // "best", "offcenter", "circumcenter"
 std::string_view to_string(EncroachmentRule r);
 std::optional<EncroachmentRule> parse_encroachment_rule(std::string_view name);  // "circle", "lens"
 

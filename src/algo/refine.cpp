@@ -304,6 +304,7 @@ class Refiner {
   bool carry_bounds_ = false;     // the mesh has per-triangle bounds: keep them on new triangles
   bool shortest_first_ = true;    // queue order
   bool best_ = false;             // SteinerRule::Best: choose among candidates
+  bool sized_ = false;            // some size bound (area or edge length) applies
   double bound_rad_ = 0;          // the angle bound in radians
   bool has_markers_ = false;
   double precision2_ = 0;       // squared shortest edge below which nothing is split
@@ -377,6 +378,7 @@ void Refiner::setup() {
   }
   carry_bounds_ = m_.has_triangle_area_bounds();
   has_area_bounds_ = opt_.use_triangle_area_bounds && carry_bounds_;
+  sized_ = opt_.max_area > 0 || has_area_bounds_ || opt_.max_area_at || opt_.max_edge_at;
   budget_ = opt_.max_steiner;
   if (budget_ == kAutomaticBudget)
     budget_ = theta <= kAutomaticBudgetAngle ? 2'000'000 + 50 * n_input_ : 1'000'000 + 10 * n_input_;
@@ -857,12 +859,7 @@ bool Refiner::score(TriId t, const Point& c, double min2, int& bad, double& radi
     // sin of the smallest angle = cross / (product of the two longer edges).
     const double lo = std::min({la, lb, lab});
     const double den = la * lb * lab / lo;
-    if (cross * cross < sin2_bound_ * den) {
-      ++bad;
-      continue;
-    }
-    const double bound = area_bound(tri_of(b.inner), A, B, c);
-    if (bound > 0 && 0.5 * cross > bound) ++bad;
+    if (cross * cross < sin2_bound_ * den) ++bad;
   }
   return true;
 }
@@ -892,6 +889,11 @@ Point Refiner::best_point(TriId t, const Eval& ev, const Point& primary) {
   double best_y = ymax, best_s = 0;
   if (!score(t, primary, min2, best_bad, best_r2)) best_bad = std::numeric_limits<int>::max(), best_r2 = 0;
   if (best_bad == 0) return primary;
+  // Next to triangles that are too large the bad ones are split anyway by
+  // the size bound's refinement: the search would cost time for nothing.
+  if (sized_ && best_bad != std::numeric_limits<int>::max())
+    for (const BoundaryEdge& b : bnd_)
+      if (b.outer != kNone && eval(tri_of(b.outer)).large) return primary;
   const double tan_a = std::tan(bound_rad_);
   const auto consider = [&](double y, double s) {
     if (y >= ymax || y <= 0) return;
