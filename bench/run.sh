@@ -88,6 +88,38 @@ else
   done
 fi
 
+# ---- refinement ----------------------------------------------------------------
+# bench_refine: square with a square hole at -q30 with an area bound (~4e6
+# triangles), each configuration in its own process (peak RSS per triangle);
+# CGAL's refine_Delaunay_mesh_2 when built with CGAL; the 100k star at -q20.
+# Then the triangle counts against Triangle 1.6's on the corpus, when present.
+refine_lines=()
+if [ -x "$bin/bench_refine" ] && [ -z "${SKIP_REFINE:-}" ]; then
+  echo
+  echo "== refinement (bench_refine; medians)"
+  for cfg in "--runs 3" "--runs 3 --offcenter" "--runs 1 --peer cgal" "--star 100000 --q 20 --runs 3"; do
+    # shellcheck disable=SC2086
+    if out=$("$bin/bench_refine" $cfg 2>&1); then
+      line=$(tail -n 1 <<<"$out")
+      echo "bench_refine $cfg: $line"
+      refine_lines+=("bench_refine $cfg: $line")
+    else
+      echo "bench_refine $cfg: skipped ($(tail -n 1 <<<"$out"))"
+    fi
+  done
+  corpus=${CORPUS:-$(cd "$(dirname "$0")/.." && pwd)/../shared/corpus}
+  if [ -d "$corpus" ] && [ -x "$bin/deltamesh" ]; then
+    echo
+    echo "== triangle counts against Triangle 1.6 on $corpus (bench/quality_vs_triangle.sh)"
+    qfile=$(mktemp)
+    CORPUS=$corpus "$(dirname "$0")/quality_vs_triangle.sh" "$bin/deltamesh" | grep '^TOTAL' | tee "$qfile" || true
+    while read -r l; do refine_lines+=("$l"); done <"$qfile"
+    rm -f "$qfile"
+  else
+    echo "run.sh: corpus not found at $corpus; triangle-count comparison skipped"
+  fi
+fi
+
 # ---- summary ----------------------------------------------------------------------
 echo
 echo "== summary (medians; ratio = CGAL wall time / deltamesh wall time, > 1: deltamesh faster;"
@@ -133,3 +165,4 @@ echo "   cpu ratio: the same with CPU times, steadier on a busy machine)"
         (have ? sprintf("%.3f s", gw) : "-"), r, rc, l }'
   done
 }
+for l in "${refine_lines[@]}"; do echo "$l"; done
