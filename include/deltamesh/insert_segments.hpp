@@ -51,9 +51,10 @@ struct InsertSegmentsStats {
 // intersection), unless options.strict. To do this the mesh is closed for a
 // while: its exterior and its holes are filled with the constrained
 // triangulation of its vertices and boundary edges (kept apart and removed
-// again), so the mesh's boundary and triangles outside the segments' way are
-// left as they were; triangle ids of the untouched triangles do not change
-// (when no segment needs inserting, none changes). Triangles made where a
+// again), so the mesh's boundary and the triangles off the segments' way
+// are left as they were, in their slots (when every segment is a chain
+// already, no triangle changes); then options.delaunay may flip any
+// unconstrained edge that is not locally Delaunay. Triangles made where a
 // segment passes take the data (attributes, area bound) of the triangles
 // they replace, slot by slot. An edge of several segments keeps the marker
 // of the lowest-numbered given segment with a nonzero marker, else the
@@ -67,9 +68,9 @@ struct InsertSegmentsStats {
 // (a vertex on a boundary edge, overlapping triangles), which a valid
 // mesh's does not, and IntersectingSegments / SegmentError under strict.
 //
-// New vertices get their markers by finish_vertex_markers() and attributes
-// interpolated along the segment they split; vertex ids of the mesh do not
-// change, new ones are appended.
+// Vertex ids of the mesh do not change; new ones are appended, with
+// attributes interpolated along the segment they split. Ends with
+// finish_vertex_markers() (vertices whose marker is 0 take a segment's).
 void insert_segments(Mesh& mesh, std::span<const Segment> segments, const InsertSegmentsOptions& options = {},
                      InsertSegmentsStats* stats = nullptr);
 
