@@ -6,9 +6,11 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <set>
 #include <sstream>
 #include <string>
@@ -436,6 +438,169 @@ TEST_F(Cli, RefineReadsMeshAndWritesNextIteration) {
   r = run("-r square_hole.2");
   EXPECT_EQ(r.code, 2);
   EXPECT_CONTAINS(r.err, "square_hole.2.ele");
+}
+
+// -r -p: the .poly's segments that are not edges of the mesh are inserted
+// (new constraints on an old mesh), its holes carved.
+
+// square_hole.1.poly (from -p square_hole) with segments appended.
+std::string poly_with(const std::vector<std::vector<std::string>>& rows, const std::vector<std::string>& extra) {
+  const std::size_t ns = std::stoul(rows[1][0]);
+  std::string text;
+  auto line = [&](const std::vector<std::string>& row) {
+    for (std::size_t i = 0; i < row.size(); ++i) text += (i ? " " : "") + row[i];
+    text += "\n";
+  };
+  line(rows[0]);
+  text += std::to_string(ns + extra.size()) + " 1\n";
+  for (std::size_t i = 2; i < 2 + ns; ++i) line(rows[i]);
+  for (std::size_t i = 0; i < extra.size(); ++i) text += std::to_string(ns + 1 + i) + " " + extra[i] + "\n";
+  for (std::size_t i = 2 + ns; i < rows.size(); ++i) line(rows[i]);
+  return text;
+}
+
+TEST_F(Cli, RefineInsertsNewPolySegments) {
+  data("square_hole.poly");
+  ASSERT_EQ(run("-pQ square_hole").code, 0);
+  const auto rows = table(path("square_hole.1.poly"));
+  fs::copy_file(path("square_hole.1.node"), path("inner.node"));
+  fs::copy_file(path("square_hole.1.ele"), path("inner.ele"));
+  // Vertex 2 (4,0) to vertex 5 (1,1): across the lower part of the ring.
+  write("inner.poly", poly_with(rows, {"2 5 7"}));
+  Result r = run("-rpC inner");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_CONTAINS(r.out, "1 inserted");
+  EXPECT_CONTAINS(r.out, "15 segments present");
+  const auto poly = table(path("inner.1.poly"));
+  EXPECT_TRUE(std::any_of(poly.begin(), poly.end(), [](const auto& row) {
+    return row.size() == 4 && ((row[1] == "2" && row[2] == "5") || (row[1] == "5" && row[2] == "2")) && row[3] == "7";
+  }));
+  EXPECT_EQ(table(path("inner.1.node")), table(path("inner.node")));  // no vertex added
+
+  // Refinement keeps it: the marker-7 edges form a straight path from 2 to 5.
+  r = run("-rpq30C inner");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_CONTAINS(r.out, "mesh is valid");
+  const auto node = table(path("inner.1.node"));
+  std::map<std::string, std::vector<std::string>> next;
+  for (const auto& row : table(path("inner.1.poly")))
+    if (row.size() == 4 && row[3] == "7") {
+      next[row[1]].push_back(row[2]);
+      next[row[2]].push_back(row[1]);
+    }
+  ASSERT_GE(next.size(), 3u);  // split by refinement
+  auto xy = [&](const std::string& id) {
+    const auto& row = node[std::stoul(id)];
+    return std::pair<double, double>{std::stod(row[1]), std::stod(row[2])};
+  };
+  std::string prev, cur = "2";
+  std::size_t steps = 0;
+  while (cur != "5" && steps++ < next.size()) {
+    ASSERT_EQ(next[cur].size(), cur == "2" ? 1u : 2u) << cur;
+    const std::string nxt = next[cur][0] == prev ? next[cur].back() : next[cur][0];
+    const auto [x, y] = xy(nxt);
+    EXPECT_NEAR((x - 4) * (1 - 0) - (y - 0) * (1 - 4), 0.0, 1e-9) << nxt;  // on the line (4,0)-(1,1)
+    prev = cur;
+    cur = nxt;
+  }
+  EXPECT_EQ(cur, "5");
+}
+
+TEST_F(Cli, RefineInsertsSegmentsCrossingOldOnes) {
+  data("square_hole.poly");
+  ASSERT_EQ(run("-pQ square_hole").code, 0);
+  const auto rows = table(path("square_hole.1.poly"));
+  fs::copy_file(path("square_hole.1.node"), path("cross.node"));
+  fs::copy_file(path("square_hole.1.ele"), path("cross.ele"));
+  // Vertex 1 (0,0) to vertex 8 (1,3) crosses the cut from (0,2) to (1,2).
+  write("cross.poly", poly_with(rows, {"1 8 9"}));
+  Result r = run("-rpC cross");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_CONTAINS(r.out, "1 vertex added");
+  EXPECT_CONTAINS(r.out, "mesh is valid");
+  const auto node = table(path("cross.1.node"));
+  ASSERT_EQ(node[0][0], "14");
+  EXPECT_NEAR(std::stod(node[14][1]), 2.0 / 3.0, 1e-12);
+  EXPECT_EQ(node[14][2], "2");
+  EXPECT_EQ(node[14][3], "9");  // the marker of the segment it lies on (the cut's is 0)
+  // --strict: the crossing is an error naming both segments.
+  r = run("-rp --strict cross");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_CONTAINS(r.err, "cross.poly: segments 1 and 15 cross");
+}
+
+TEST_F(Cli, RefineRejectsSegmentsLeavingTheMesh) {
+  data("square_hole.poly");
+  ASSERT_EQ(run("-pQ square_hole").code, 0);
+  const auto rows = table(path("square_hole.1.poly"));
+  fs::copy_file(path("square_hole.1.node"), path("out.node"));
+  fs::copy_file(path("square_hole.1.ele"), path("out.ele"));
+  // Vertex 1 (0,0) to vertex 7 (3,3): through the hole.
+  write("out.poly", poly_with(rows, {"1 7 0"}));
+  Result r = run("-rpq out");
+  EXPECT_EQ(r.code, 2);
+  // Line 17: header, segment count line, 14 segments, then this one.
+  EXPECT_CONTAINS(r.err, "out.poly:17: segment 15 (vertices 1-7) leaves the mesh");
+  EXPECT_FALSE(exists("out.1.node"));
+  EXPECT_FALSE(exists("out.1.ele"));
+  EXPECT_FALSE(exists("out.1.poly"));
+  // An endpoint that does not exist is a parse error of the .poly already.
+  write("out.poly", poly_with(rows, {"1 99 0"}));
+  r = run("-rp out");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_CONTAINS(r.err, "out.poly:17");
+}
+
+TEST_F(Cli, RefineCarvesNewHolesAndAssignsRegions) {
+  write("sq.poly",
+        "8 2 0 0\n1 0 0\n2 4 0\n3 4 4\n4 0 4\n5 1 1\n6 3 1\n7 3 3\n8 1 3\n"
+        "4 1\n1 1 2 1\n2 2 3 1\n3 3 4 1\n4 4 1 1\n0\n");
+  ASSERT_EQ(run("-pQ sq").code, 0);
+  // The inner square as new segments, a hole point in it, a region seed
+  // outside it.
+  write("sq.1.poly",
+        "0 2 0 1\n8 1\n1 1 2 1\n2 2 3 1\n3 3 4 1\n4 4 1 1\n5 5 6 2\n6 6 7 2\n7 7 8 2\n8 8 5 2\n"
+        "1\n1 2 2\n1\n1 0.5 0.5 5 0\n");
+  Result r = run("-rpAC sq.1");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_CONTAINS(r.out, "1 hole carved");
+  EXPECT_CONTAINS(r.out, "mesh is valid");
+  const auto ele = table(path("sq.2.ele"));
+  EXPECT_EQ(ele[0], (std::vector<std::string>{"8", "3", "1"}));  // the ring of 8 vertices
+  for (std::size_t i = 1; i < ele.size(); ++i) EXPECT_EQ(ele[i][4], "5");
+  EXPECT_EQ(table(path("sq.2.poly"))[1][0], "8");
+  // The hole is in the output .poly: reading it back carves nothing more.
+  r = run("-rpAC sq.2");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(table(path("sq.3.ele")), ele);
+
+  // -rpA on a -pA mesh: the same attributes again, not a second column.
+  data("square_hole.poly");
+  ASSERT_EQ(run("-pAQ square_hole").code, 0);
+  ASSERT_EQ(run("-rpAQ square_hole.1").code, 0);
+  EXPECT_EQ(table(path("square_hole.2.ele")), table(path("square_hole.1.ele")));
+}
+
+// A mesh from another tool need not be Delaunay: -r writes it as it is, and
+// flips it to a constrained Delaunay triangulation before refining it.
+TEST_F(Cli, RefiningANonDelaunayMeshFlipsItFirst) {
+  // A fan from vertex 1 over 12 points on a slightly squashed circle.
+  std::string node = "12 2 0 0\n", ele = "10 3 0\n";
+  for (int i = 0; i < 12; ++i) {
+    const double a = 2 * 3.141592653589793 * i / 12;
+    node += std::to_string(i + 1) + " " + std::to_string(10 * std::cos(a)) + " " + std::to_string(7 * std::sin(a)) + "\n";
+  }
+  for (int i = 2; i < 12; ++i)
+    ele += std::to_string(i - 1) + " 1 " + std::to_string(i) + " " + std::to_string(i + 1) + "\n";
+  write("fan.node", node);
+  write("fan.ele", ele);
+  Result r = run("-rC fan");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(table(path("fan.1.ele")), table(path("fan.ele")));  // as read
+  r = run("-rq25CV fan");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_CONTAINS(r.out, "mesh is valid");  // Delaunay checked after refinement
+  EXPECT_EQ(r.out.find("Delaunay flips:            0"), std::string::npos) << r.out;
 }
 
 // ---------------------------------------------------------------------------

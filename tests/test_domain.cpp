@@ -586,8 +586,22 @@ TEST(Rebuild, Errors) {
   EXPECT_THROW(mesh_from_triangles(g, std::vector<VertexId>{0, 1, 7}), InputError);       // no vertex 7
   EXPECT_THROW(mesh_from_triangles(g, std::vector<VertexId>{0, 1, 1}), InputError);       // degenerate
   EXPECT_THROW(mesh_from_triangles(g, std::vector<VertexId>{0, 1, 2, 0, 1, 3}), InputError);  // overlap
-  g.segments.push_back({0, 3, 0});
-  EXPECT_THROW(mesh_from_triangles(g, std::vector<VertexId>{0, 1, 2, 1, 3, 2}), InputError);  // 0-3 not an edge
+  g.segments.push_back({0, 7, 0});
+  EXPECT_THROW(mesh_from_triangles(g, std::vector<VertexId>{0, 1, 2, 1, 3, 2}), SegmentError);  // no vertex 7
+  // A segment that is not an edge is inserted (Triangle's -r -p): 0-3
+  // crosses the diagonal 1-2, which is flipped.
+  g.segments = {{0, 3, 6}};
+  InsertSegmentsStats st;
+  const Mesh m = mesh_from_triangles(g, std::vector<VertexId>{0, 1, 2, 1, 3, 2}, 0, {}, {}, &st);
+  expect_valid(m);
+  EXPECT_EQ(st.inserted, 1u);
+  EXPECT_NE(m.find_edge(0, 3), kNone);
+  EXPECT_EQ(m.find_edge(1, 2), kNone);
+  EXPECT_EQ(m.vertex_markers()[0], 6);
+  // One leaving the mesh (a triangle only): an error.
+  g.segments = {{2, 4, 0}};
+  g.points.push_back({2, 2});
+  EXPECT_THROW(mesh_from_triangles(g, std::vector<VertexId>{0, 1, 3, 0, 3, 2, 3, 4, 1}), SegmentError);
 }
 
 }  // namespace

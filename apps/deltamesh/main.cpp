@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <exception>
 #include <filesystem>
 #include <new>
@@ -11,6 +12,7 @@
 
 #include "deltamesh/deltamesh.hpp"
 #include "deltamesh/formats.hpp"
+#include "deltamesh/insert_segments.hpp"
 #include "deltamesh/quality.hpp"
 #include "deltamesh/refine.hpp"
 #include "deltamesh/switches.hpp"
@@ -91,19 +93,16 @@ class Run {
     dm::Mesh mesh;
     dm::TriangulateStats stats;
     if (opt_.refine) {
-      mesh = read_mesh(in);
-      if (opt_.area_from_regions) {
-        // -ra: per-triangle bounds from FILE.area (one per triangle, <= 0: none).
-        const std::string area_path = in + ".area";
-        require_file(area_path);
-        const std::vector<double> bounds = dm::read_area(area_path);
-        if (bounds.size() != mesh.num_triangles())
-          throw dm::InputError(area_path + " has " + std::to_string(bounds.size()) + " bounds for " +
-                               std::to_string(mesh.num_triangles()) + " triangles");
-        for (dm::TriId t = 0; t < bounds.size(); ++t) mesh.set_triangle_area_bound(t, bounds[t]);
-      }
+      mesh = read_mesh(in, stats);
+      if (!opt_.quiet)
+        for (const std::string& w : stats.warnings) std::fprintf(stderr, "deltamesh: warning: %s\n", w.c_str());
       if (refining()) {
+        // Refinement needs a constrained Delaunay triangulation; a mesh from
+        // another tool need not be one (on a CDT this flips nothing).
         auto t = Clock::now();
+        delaunay_flips_ = dm::make_constrained_delaunay(mesh);
+        phase("constrained Delaunay flips", t);
+        t = Clock::now();
         dm::RefineOptions ropt = refine_options();
         ropt.progress = progress_callback();
         refine_stats_ = dm::refine(mesh, ropt);
@@ -176,8 +175,14 @@ class Run {
       // carved domain need not be convex; a mesh read with -r need not be
       // Delaunay.
       copt.convex_hull = !poly_ && !opt_.refine && !refined_;  // split hull edges bend by rounding
-      copt.delaunay = !opt_.refine && opt_.cdt_method != dm::CdtMethod::Ct;
+      // -r refines a CDT (flipped to one first); without refinement the
+      // mesh is written as read, Delaunay or not.
+      copt.delaunay = opt_.refine ? refined_ : opt_.cdt_method != dm::CdtMethod::Ct;
       dm::CheckReport report = dm::check(mesh, copt);
+      // With -r -p: every .poly segment was a chain of constrained edges
+      // after insertion (checked before holes were carved).
+      if (opt_.refine)
+        for (const std::string& p : stats.segment_check.problems) report.problems.push_back("before carving: " + p);
       // With -p: every segment was a chain of constrained edges before
       // carving (checked in the pipeline), and carving left a boundary made
       // of segments only.
@@ -270,12 +275,15 @@ class Run {
   bool writing() const { return writing_; }
 
  private:
-  // -r: FILE.node + FILE.ele (+ FILE.poly segments with -p), rebuilt as is.
-  dm::Mesh read_mesh(const std::string& in) {
+  // -r: FILE.node + FILE.ele (+ FILE.poly with -p: its segments inserted
+  // where they are not edges yet, its holes carved), -ra: FILE.area.
+  dm::Mesh read_mesh(const std::string& in, dm::TriangulateStats& stats) {
     const std::string node_path = in + ".node", ele_path = in + ".ele", poly_path = in + ".poly";
+    const std::string area_path = in + ".area";
     require_file(node_path);
     require_file(ele_path);
     if (opt_.poly) require_file(poly_path);
+    if (opt_.area_from_regions) require_file(area_path);
     input_path_ = node_path;
     auto t = Clock::now();
     dm::Pslg nodes = dm::read_node(node_path);
@@ -292,6 +300,16 @@ class Run {
     }
     input_path_ = ele_path;
     dm::EleData ele = dm::read_ele(ele_path, nodes.first_index);
+    // -ra: per-triangle bounds (one per triangle of FILE.ele, <= 0: none),
+    // set before segments are inserted so they stay with their triangles.
+    std::vector<double> bounds;
+    if (opt_.area_from_regions) {
+      input_path_ = area_path;
+      bounds = dm::read_area(area_path);
+      if (bounds.size() != ele.triangles.size() / 3)
+        throw dm::InputError("has " + std::to_string(bounds.size()) + " bounds for " +
+                             std::to_string(ele.triangles.size() / 3) + " triangles");
+    }
     phase("read", t);
     if (!ele.midside.empty()) {
       // A 6-node (-o2) mesh: refined as the corner mesh; its midpoint nodes
@@ -305,14 +323,88 @@ class Run {
     }
     input_path_ = node_path;
     t = Clock::now();
-    dm::Mesh mesh = dm::mesh_from_triangles(nodes, ele.triangles, ele.num_attributes, ele.attributes);
+    dm::RebuildOptions ropt;
+    ropt.area_bounds = bounds;
+    ropt.method = opt_.cdt_method;
+    ropt.strict = opt_.strict;
+    dm::Mesh mesh;
+    try {
+      mesh = dm::mesh_from_triangles(nodes, ele.triangles, ele.num_attributes, ele.attributes, ropt, &inserted_);
+    } catch (const dm::SegmentError& e) {
+      const std::size_t line = poly_segment_line(poly_path, e.segment());
+      input_path_ = poly_path + (line ? ":" + std::to_string(line) : "");
+      throw;
+    } catch (const dm::IntersectingSegments&) {
+      input_path_ = poly_path;
+      throw;
+    }
+    phase("rebuild mesh", t);
+    if (opt_.poly) {
+      if (inserted_.inserted) phase("  of which segment insertion", inserted_.seconds, true);
+      if (opt_.check) {
+        t = Clock::now();
+        dm::CheckOptions co;
+        co.delaunay = false;
+        co.convex_hull = false;
+        co.pslg = &nodes;
+        stats.segment_check = dm::check(mesh, co);
+        phase("check segments", t);
+      }
+      // Holes (in the mesh: carved; outside it, as in a .poly written with
+      // the mesh: nothing to do) and, with -A, regional attributes. Area
+      // bounds come from FILE.area with -r, as in Triangle.
+      t = Clock::now();
+      dm::DomainOptions dopt;
+      dopt.ignore_holes = opt_.ignore_holes;
+      dopt.regional_attributes = opt_.regional_attributes;
+      dm::Pslg seeds;
+      seeds.holes = holes_;
+      seeds.regions = regions_;
+      dm::carve_mesh(mesh, seeds, dopt, &stats.domain);
+      if (stats.domain.triangles_removed) dm::finish_vertex_markers(mesh);
+      phase("holes, regions", t);
+      if (stats.domain.holes_ignored)
+        stats.warnings.push_back(plural(stats.domain.holes_ignored, "hole point", "hole points") +
+                                 " ignored (on a vertex or on a segment)");
+      if (stats.domain.regions_ignored)
+        stats.warnings.push_back(plural(stats.domain.regions_ignored, "region point", "region points") +
+                                 " ignored (outside the mesh, on a vertex or on a segment)");
+      if (mesh.num_triangles() == 0)
+        stats.warnings.push_back("every triangle was removed: a hole point reaches everything");
+    }
     if (opt_.convex_hull) {
       // With -r, -c makes the mesh boundary (holes included) into segments.
       for (dm::HalfEdgeId e = 0; e < mesh.triangle_vertices().size(); ++e)
         if (mesh.twin(e) == dm::kNone && !mesh.is_constrained(e)) mesh.constrain_edge(e, 0);
     }
-    phase("rebuild mesh", t);
     return mesh;
+  }
+
+  // The 1-based line of segment `index` in a .poly file (0 when it cannot be
+  // found): data lines are those with something before any '#'.
+  static std::size_t poly_segment_line(const std::string& path, std::size_t index) {
+    std::FILE* f = std::fopen(path.c_str(), "r");
+    if (!f) return 0;
+    std::size_t line = 0, data = 0, target = 0;
+    long long vertices = -1;
+    std::string text;
+    for (int c = 0; c != EOF;) {
+      text.clear();
+      while ((c = std::fgetc(f)) != EOF && c != '\n') text.push_back(static_cast<char>(c));
+      ++line;
+      text = text.substr(0, text.find('#'));
+      if (text.find_first_not_of(" \t\r") == std::string::npos) continue;
+      if (data++ == 0) {
+        vertices = std::atoll(text.c_str());
+        target = static_cast<std::size_t>(std::max(0LL, vertices)) + 3 + index;  // header, vertices, segment header
+      }
+      if (data == target) {
+        std::fclose(f);
+        return line;
+      }
+    }
+    std::fclose(f);
+    return 0;
   }
 
   void phase(const std::string& name, Clock::time_point t0) {
@@ -354,7 +446,14 @@ class Run {
       }
     }
     if (opt_.refine) {
-      std::printf("Mesh read: %zu vertices, %zu triangles\n", mesh.num_vertices(), mesh.num_triangles());
+      std::printf("Mesh read: %zu vertices, %zu triangles", mesh.num_vertices(), mesh.num_triangles());
+      if (opt_.poly) {
+        std::printf("; %s (%zu already edges, %zu inserted, %s added)",
+                    plural(inserted_.segments, "segment", "segments").c_str(), inserted_.already_present,
+                    inserted_.inserted, plural(inserted_.vertices_added, "vertex", "vertices").c_str());
+        if (st.domain.holes_used) std::printf(", %s carved", plural(st.domain.holes_used, "hole", "holes").c_str());
+      }
+      std::printf("\n");
     } else if (poly_) {
       std::printf("Constrained Delaunay triangulation: %s, %s", plural(st.input_vertices, "input vertex", "input vertices").c_str(),
                   plural(st.input_segments, "segment", "segments").c_str());
@@ -400,6 +499,18 @@ class Run {
         std::printf("  triangles removed:         %zu\n", st.domain.triangles_removed);
         if (opt_.convex_hull) std::printf("  hull segments added:       %zu\n", st.domain.hull_segments_added);
       }
+      if (opt_.refine && opt_.poly) {
+        std::printf("  segments:                  %zu (%zu already edges, %zu inserted, %zu zero-length ignored)\n",
+                    inserted_.segments, inserted_.already_present, inserted_.inserted, inserted_.zero_length);
+        std::printf("  intersections resolved:    %zu (%zu vertices added)\n", inserted_.cdt.intersections,
+                    inserted_.vertices_added);
+        std::printf("  vertices on segments:      %zu\n", inserted_.cdt.vertices_on_segments);
+        std::printf("  holes:                     %zu (%zu carved, %zu outside the mesh, %zu ignored)%s\n",
+                    holes_.size(), st.domain.holes_used, st.domain.holes_outside, st.domain.holes_ignored,
+                    opt_.ignore_holes ? " -O: not applied" : "");
+        std::printf("  triangles removed:         %zu\n", st.domain.triangles_removed);
+      }
+      if (opt_.refine && refined_) std::printf("  Delaunay flips:            %zu (before refinement)\n", delaunay_flips_);
       std::printf("  vertices in output:        %zu\n", mesh.num_vertices());
       std::printf("  triangles:                 %zu\n", mesh.num_triangles());
       std::printf("  edges:                     %zu (%zu on the boundary)\n", (3 * mesh.num_triangles() + boundary) / 2,
@@ -465,6 +576,8 @@ class Run {
   std::string input_path_;
   std::vector<dm::Point> holes_;
   std::vector<dm::RegionSeed> regions_;
+  dm::InsertSegmentsStats inserted_;  // -r -p: the .poly segments
+  std::size_t delaunay_flips_ = 0;    // -r: flips before refinement
 };
 
 }  // namespace
@@ -512,6 +625,11 @@ int main(int argc, char** argv) {
                  "deltamesh: %s: segments %zu and %zu cross (--strict; without it they are split where they cross)\n",
                  run.input_path().c_str(), e.first() + static_cast<std::size_t>(run.first_index()),
                  e.second() + static_cast<std::size_t>(run.first_index()));
+    return kExitInput;
+  } catch (const dm::SegmentError& e) {
+    const std::size_t base = static_cast<std::size_t>(run.first_index());
+    std::fprintf(stderr, "deltamesh: %s: segment %zu (vertices %zu-%zu) %s\n", run.input_path().c_str(),
+                 e.segment() + base, e.a() + base, e.b() + base, e.problem().c_str());
     return kExitInput;
   } catch (const dm::InputError& e) {
     std::fprintf(stderr, "deltamesh: %s: %s\n", run.input_path().empty() ? opt.input.c_str() : run.input_path().c_str(),

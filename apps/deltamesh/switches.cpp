@@ -293,9 +293,10 @@ Switches (Triangle's, combinable as one string, e.g. -pczV):
 Input:
   -p  read FILE.poly: segments, holes, regional attributes; constrained
       Delaunay triangulation of the domain the segments enclose  --poly
-  -r  (--refine) read a mesh (FILE.node, FILE.ele; with -p also FILE.poly for its
-      segments) and refine it (with -q/-a; -a without a number reads the
-      per-triangle bounds of FILE.area) into the next iteration
+  -r  (--refine) read a mesh (FILE.node, FILE.ele; with -p also FILE.poly: its
+      segments are inserted where they are not edges yet, its holes carved)
+      and refine it (with -q/-a; -a without a number reads the per-triangle
+      bounds of FILE.area) into the next iteration
 Quality meshing:
   -q[ANGLE]  (--quality, --min-angle=ANGLE) quality mesh: no angle below ANGLE degrees (default 20), except
       in input angles under 60 degrees; up to ~34 in practice

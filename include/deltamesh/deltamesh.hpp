@@ -6,6 +6,7 @@
 #include "deltamesh/errors.hpp"
 #include "deltamesh/formats.hpp"
 #include "deltamesh/geometry.hpp"
+#include "deltamesh/insert_segments.hpp"
 #include "deltamesh/mesh.hpp"
 #include "deltamesh/predicates.hpp"
 #include "deltamesh/progress.hpp"

@@ -37,6 +37,7 @@ struct DomainStats {
   std::size_t triangles_kept = 0;
   std::size_t holes_used = 0;        // hole points that located inside the triangulation
   std::size_t holes_ignored = 0;     // hole points outside the hull, on a vertex or on a segment
+  std::size_t holes_outside = 0;     // carve_mesh: hole points in no triangle (in a hole the mesh has already)
   std::size_t regions_used = 0;      // region seeds that located in a kept triangle
   std::size_t regions_ignored = 0;   // region seeds outside the domain, on a vertex or on a segment
   std::size_t hull_segments_added = 0;  // -c: hull edges that were not segments yet
@@ -57,6 +58,20 @@ struct DomainStats {
 // one wins, as in Triangle. Removing every triangle is not an error: the
 // result is an empty mesh that still holds the vertices.
 void carve_domain(Mesh& mesh, const Pslg& pslg, const DomainOptions& options = {}, DomainStats* stats = nullptr);
+
+// Holes and regions on a finished (compacted) mesh, as Triangle's -r with -p
+// reads them: the mesh's domain is its triangles, so there is no exterior to
+// remove (options.fill and keep_convex_hull are not used). A hole point in a
+// triangle, or on an unconstrained edge, removes its segment-bounded region;
+// one in no triangle (in a hole the mesh has already: what a .poly written
+// with the mesh lists) is counted in holes_outside; one on a vertex or a
+// segment is ignored (holes_ignored), unless options.ignore_holes. Region
+// seeds (with options.regional_attributes / regional_area_bounds) are
+// located the same way; the last seed in a region gives it attribute 0
+// (added when the triangles have none; triangles no seed reaches keep
+// theirs) and its area bound. The mesh is compacted again when triangles
+// were removed. Points are located by one pass over the triangles.
+void carve_mesh(Mesh& mesh, const Pslg& pslg, const DomainOptions& options = {}, DomainStats* stats = nullptr);
 
 // The invariant carving leaves: every boundary edge of the (compacted) mesh
 // is a segment, since removal stops only at segments and -c makes the hull

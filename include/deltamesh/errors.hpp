@@ -64,4 +64,25 @@ class IntersectingSegments : public InputError {
   std::size_t first_, second_;
 };
 
+// A segment that cannot go into an existing mesh (insert_segments, -r with
+// -p): an endpoint out of range or in no triangle, a way outside the mesh,
+// or (strict) a crossing with a segment already there. `segment()` is its
+// index in the list given; `problem()` says what is wrong without naming it.
+class SegmentError : public InputError {
+ public:
+  SegmentError(std::size_t segment, std::size_t a, std::size_t b, const std::string& problem)
+      : InputError("segment " + std::to_string(segment) + " (vertices " + std::to_string(a) + "-" +
+                       std::to_string(b) + ") " + problem,
+                   segment),
+        segment_(segment), a_(a), b_(b), problem_(problem) {}
+  std::size_t segment() const { return segment_; }
+  std::size_t a() const { return a_; }
+  std::size_t b() const { return b_; }
+  const std::string& problem() const { return problem_; }
+
+ private:
+  std::size_t segment_, a_, b_;
+  std::string problem_;
+};
+
 }  // namespace deltamesh

@@ -14,6 +14,7 @@
 #include "deltamesh/cdt.hpp"
 #include "deltamesh/delaunay.hpp"
 #include "deltamesh/domain.hpp"
+#include "deltamesh/insert_segments.hpp"
 #include "deltamesh/mesh.hpp"
 #include "deltamesh/progress.hpp"
 #include "deltamesh/pslg.hpp"
@@ -90,16 +91,36 @@ Mesh triangulate(const Pslg& pslg, const TriangulateOptions& options = {}, Trian
 // afterwards (refinement) calls it again.
 void finish_vertex_markers(Mesh& mesh);
 
+struct RebuildOptions {
+  // Per-triangle maximum areas (an .area file read with -ra): one per
+  // triangle of the list, <= 0 for none. Set before segments are inserted,
+  // so they follow their triangles. Empty: none.
+  std::span<const double> area_bounds;
+  // How segments that are not edges of the mesh are inserted (see
+  // insert_segments; no Delaunay flips here: the mesh is rebuilt as is,
+  // call make_constrained_delaunay before refine() if it may not be a CDT).
+  CdtMethod method = CdtMethod::Fast;
+  bool strict = false;
+};
+
 // Rebuilds a mesh from a triangle list, as Triangle's -r reads FILE.node and
 // FILE.ele: points, markers and attributes from `nodes`, triangles as 0-based
 // vertex triples (either orientation), `num_attributes` attributes per
 // triangle. Segments of `nodes` (from a .poly) become constrained edges with
-// their markers; each must be an edge, or a chain of collinear edges, of the
-// mesh. The result is compacted (no ghost triangles). Throws InputError for a
-// vertex id out of range, a degenerate triangle, an edge shared by more than
-// two triangles or triangles that overlap across an edge, and a segment that
-// is not in the mesh.
+// their markers: a segment that is an edge, or a chain of collinear edges,
+// of the mesh is constrained as it is; others are inserted into the mesh by
+// insert_segments() (new constraints on an old mesh: the triangles they
+// cross are replaced, crossings with other segments add vertices). Holes
+// and regions of `nodes` are not used (carve_mesh does that). Vertex
+// markers and attributes then follow triangulate()'s rules. The result is
+// compacted (no ghost triangles); without inserted segments its triangles
+// are the list's, in order. Throws InputError for a vertex id out of range,
+// a degenerate triangle, an edge shared by more than two triangles or
+// triangles that overlap across an edge, SegmentError for a segment that
+// cannot be inserted (insert_segments), and InputError when the triangles'
+// boundary crosses or touches itself and a segment needs inserting.
 Mesh mesh_from_triangles(const Pslg& nodes, std::span<const VertexId> triangles, std::size_t num_attributes = 0,
-                         std::span<const double> attributes = {});
+                         std::span<const double> attributes = {}, const RebuildOptions& options = {},
+                         InsertSegmentsStats* stats = nullptr);
 
 }  // namespace deltamesh

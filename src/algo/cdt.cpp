@@ -54,7 +54,7 @@ std::uint64_t saturating_pairs(std::uint64_t s) {
 
 }  // namespace
 
-CdtBuilder::CdtBuilder(Mesh& mesh, const Pslg& pslg, const CdtOptions& options, CdtStats& stats)
+CdtBuilder::CdtBuilder(Mesh& mesh, const Pslg& pslg, const CdtOptions& options, CdtStats& stats, bool keep_ids)
     : mesh_(mesh),
       pslg_(pslg),
       opt_(options),
@@ -73,7 +73,7 @@ CdtBuilder::CdtBuilder(Mesh& mesh, const Pslg& pslg, const CdtOptions& options, 
   // to give edges their markers; without either the marker array stays
   // empty and every constrained edge counts as segment 0.
   for (const Segment& s : pslg.segments) ids_ = ids_ || s.marker != 0;
-  ids_ = ids_ || options.strict;
+  ids_ = ids_ || options.strict || keep_ids;
   if (ids_ && seg_of_.size() != tv_.size()) seg_of_.assign(tv_.size(), 0);
   max_steiner_ = static_cast<std::size_t>(saturating_pairs(pslg.segments.size())) + 16;
   // The static incircle filter's bound (incircle_fast): differences of

@@ -22,7 +22,9 @@ namespace deltamesh::detail {
 // finish() replaces the indices by the segments' markers.
 class CdtBuilder {
  public:
-  CdtBuilder(Mesh& mesh, const Pslg& pslg, const CdtOptions& options, CdtStats& stats);
+  // keep_ids: the marker array holds segment indices even when no segment
+  // has a marker (insert_segments reads them before finish()).
+  CdtBuilder(Mesh& mesh, const Pslg& pslg, const CdtOptions& options, CdtStats& stats, bool keep_ids = false);
 
   // Inserts input segment `index` between (already merged) vertices a != b.
   void insert_segment(VertexId a, VertexId b, std::uint32_t index);

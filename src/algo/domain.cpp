@@ -16,9 +16,12 @@
 // the exterior and the hole points visits only the triangles removed.
 #include "deltamesh/domain.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <string>
 #include <vector>
+
+#include "deltamesh/predicates.hpp"
 
 namespace deltamesh {
 
@@ -309,6 +312,98 @@ void carve_domain(Mesh& mesh, const Pslg& pslg, const DomainOptions& options, Do
     if (options.regional_area_bounds && s.max_area > 0) mesh.set_triangle_area_bound(t, s.max_area);
   }
   mesh.compact();
+  st.triangles_kept = mesh.num_triangles();
+  st.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+void carve_mesh(Mesh& mesh, const Pslg& pslg, const DomainOptions& options, DomainStats* stats) {
+  const auto t0 = std::chrono::steady_clock::now();
+  DomainStats local;
+  DomainStats& st = stats ? *stats : local;
+  st = DomainStats{};
+  if (!mesh.compacted()) mesh.compact();
+  const std::size_t slots = mesh.num_triangle_slots();
+
+  // The points to locate: holes, then region seeds.
+  const bool use_seeds = options.regional_attributes || options.regional_area_bounds;
+  std::vector<Point> points;
+  if (!options.ignore_holes) points = pslg.holes;
+  const std::size_t num_holes = points.size();
+  if (use_seeds)
+    for (const RegionSeed& r : pslg.regions) points.push_back(r.p);
+  if (points.empty()) return;
+  // Per point the triangle whose region it selects; kNone in no triangle,
+  // kInfinite on a vertex or a segment.
+  std::vector<TriId> where(points.size(), kNone);
+  std::vector<std::uint32_t> by_x(points.size());
+  for (std::uint32_t i = 0; i < by_x.size(); ++i) by_x[i] = i;
+  std::sort(by_x.begin(), by_x.end(), [&](std::uint32_t a, std::uint32_t b) { return points[a].x < points[b].x; });
+  for (TriId t = 0; t < slots; ++t) {
+    const auto v = mesh.triangle(t);
+    const Point& a = mesh.point(v[0]);
+    const Point& b = mesh.point(v[1]);
+    const Point& c = mesh.point(v[2]);
+    const double x0 = std::min({a.x, b.x, c.x}), x1 = std::max({a.x, b.x, c.x});
+    const double y0 = std::min({a.y, b.y, c.y}), y1 = std::max({a.y, b.y, c.y});
+    auto lo = std::lower_bound(by_x.begin(), by_x.end(), x0, [&](std::uint32_t i, double x) { return points[i].x < x; });
+    for (auto it = lo; it != by_x.end() && points[*it].x <= x1; ++it) {
+      const Point& p = points[*it];
+      if (p.y < y0 || p.y > y1 || where[*it] != kNone) continue;
+      const double o[3] = {orient2d(a, b, p), orient2d(b, c, p), orient2d(c, a, p)};
+      if (o[0] < 0 || o[1] < 0 || o[2] < 0) continue;
+      const int zeros = (o[0] == 0) + (o[1] == 0) + (o[2] == 0);
+      if (zeros == 0) {
+        where[*it] = t;
+      } else if (zeros >= 2) {
+        where[*it] = kInfinite;  // on a vertex
+      } else {
+        const HalfEdgeId e = 3 * t + (o[0] == 0 ? 0 : o[1] == 0 ? 1 : 2);
+        where[*it] = mesh.is_constrained(e) ? kInfinite : t;
+      }
+    }
+  }
+
+  // Regions, removal and seeds.
+  const Regions regions = label_regions(mesh);
+  std::vector<char> region_removed(regions.count, 0);
+  for (std::size_t i = 0; i < num_holes; ++i) {
+    if (where[i] == kNone) {
+      ++st.holes_outside;
+    } else if (where[i] == kInfinite) {
+      ++st.holes_ignored;
+    } else {
+      ++st.holes_used;
+      region_removed[regions.label[where[i]]] = 1;
+    }
+  }
+  std::vector<std::uint32_t> region_seed(regions.count, kNone);  // the last seed in each region
+  for (std::size_t i = num_holes; i < points.size(); ++i) {
+    const TriId t = where[i];
+    if (t == kNone || t == kInfinite || region_removed[regions.label[t]]) {
+      ++st.regions_ignored;
+      continue;
+    }
+    ++st.regions_used;
+    region_seed[regions.label[t]] = static_cast<std::uint32_t>(i - num_holes);
+  }
+  if (options.regional_attributes && mesh.num_triangle_attributes() == 0 && st.regions_used > 0) {
+    mesh.set_num_triangle_attributes(1);
+    mesh.triangle_attributes().assign(slots, 0.0);
+  }
+  const std::size_t na = mesh.num_triangle_attributes();
+  for (TriId t = 0; t < slots; ++t) {
+    const std::uint32_t r = regions.label[t];
+    if (region_removed[r]) {
+      mesh.remove_triangle(t);
+      ++st.triangles_removed;
+      continue;
+    }
+    if (region_seed[r] == kNone) continue;
+    const RegionSeed& s = pslg.regions[region_seed[r]];
+    if (options.regional_attributes) mesh.triangle_attributes()[std::size_t{t} * na] = s.attribute;
+    if (options.regional_area_bounds && s.max_area > 0) mesh.set_triangle_area_bound(t, s.max_area);
+  }
+  if (st.triangles_removed > 0) mesh.compact();
   st.triangles_kept = mesh.num_triangles();
   st.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }

@@ -9,6 +9,7 @@
 
 #include "deltamesh/errors.hpp"
 #include "deltamesh/predicates.hpp"
+#include "algo/vertex_data.hpp"
 
 namespace deltamesh {
 
@@ -132,6 +133,8 @@ std::size_t count_constrained_edges(const Mesh& mesh) {
 }
 
 }  // namespace
+
+void detail::interpolate_vertex_attributes(Mesh& mesh, VertexId v, std::size_t n) { interpolate_attributes(mesh, v, n); }
 
 void finish_vertex_markers(Mesh& mesh) {
   std::vector<int>& markers = mesh.vertex_markers();
@@ -265,7 +268,7 @@ Mesh triangulate(const Pslg& pslg, const TriangulateOptions& options, Triangulat
 }
 
 Mesh mesh_from_triangles(const Pslg& nodes, std::span<const VertexId> triangles, std::size_t num_attributes,
-                         std::span<const double> attributes) {
+                         std::span<const double> attributes, const RebuildOptions& options, InsertSegmentsStats* stats) {
   const std::size_t n = nodes.points.size();
   const std::size_t nt = triangles.size() / 3;
   if (triangles.size() % 3 != 0) throw InputError("the triangle list length is not a multiple of 3");
@@ -318,44 +321,20 @@ Mesh mesh_from_triangles(const Pslg& nodes, std::span<const VertexId> triangles,
     }
     i = j;
   }
+  if (!options.area_bounds.empty()) {
+    if (options.area_bounds.size() != nt)
+      throw InputError(std::to_string(options.area_bounds.size()) + " area bounds for " + std::to_string(nt) +
+                       " triangles");
+    for (TriId t = 0; t < nt; ++t) mesh.set_triangle_area_bound(t, options.area_bounds[t]);
+  }
   mesh.compact();
 
-  // Segments: each one an edge or a straight chain of edges.
-  for (std::size_t si = 0; si < nodes.segments.size(); ++si) {
-    const Segment& s = nodes.segments[si];
-    if (s.a >= n || s.b >= n) throw InputError("segment " + std::to_string(si) + " refers to a missing vertex", si);
-    const Point& pa = mesh.point(s.a);
-    const Point& pb = mesh.point(s.b);
-    const bool use_x = std::abs(pb.x - pa.x) >= std::abs(pb.y - pa.y);
-    auto along = [&](const Point& p) { return use_x ? (pb.x >= pa.x ? p.x : -p.x) : (pb.y >= pa.y ? p.y : -p.y); };
-    VertexId cur = s.a;
-    std::size_t guard = 0;
-    while (cur != s.b && guard++ <= n) {
-      // Neighbours of cur: the dest and the third vertex of each triangle around it.
-      HalfEdgeId step = kNone;
-      VertexId next = kNone;
-      mesh.for_each_out_edge(cur, [&](HalfEdgeId g) {
-        const HalfEdgeId candidates[2] = {g, prev_edge(g)};  // cur->w, and w->cur
-        for (HalfEdgeId c : candidates) {
-          const VertexId w = c == g ? mesh.dest(c) : mesh.origin(c);
-          const Point& pw = mesh.point(w);
-          if (w == s.b || (orient2d(pa, pb, pw) == 0 && along(pw) > along(mesh.point(cur)) && along(pw) < along(pb))) {
-            if (next == kNone || along(pw) < along(mesh.point(next))) {
-              next = w;
-              step = c;
-            }
-          }
-        }
-        return true;
-      });
-      if (step == kNone)
-        throw InputError("segment " + std::to_string(si) + " (vertices " + std::to_string(s.a) + "-" +
-                             std::to_string(s.b) + ") is not made of edges of the mesh",
-                         si);
-      mesh.constrain_edge(step, s.marker);
-      cur = next;
-    }
-  }
+  // Segments: constrained where they are chains of edges, inserted where not.
+  InsertSegmentsOptions iopt;
+  iopt.method = options.method;
+  iopt.strict = options.strict;
+  iopt.delaunay = false;
+  insert_segments(mesh, nodes.segments, iopt, stats);
   carry_vertex_data(mesh, nodes, true);
   finish_vertex_markers(mesh);
   return mesh;
