@@ -6,8 +6,11 @@
 // library's typed errors; an InputError whose message says "internal error";
 // a mesh the validator rejects; an input vertex moved; a vertex of a point
 // set missing from its Delaunay triangulation; an input segment not present
-// as a chain of constrained edges when nothing was carved away; refinement
-// that ends incomplete without saying which budget stopped it.
+// as a chain of constrained edges when nothing was carved away; after
+// refinement, any of these, an edge that is not locally Delaunay, counts
+// that do not add up, or "complete" with a triangle above its area bound,
+// a triangle left by a budget, or more triangles below the angle bound than
+// refinement reports.
 #include <fuzzer/FuzzedDataProvider.h>
 
 #include <algorithm>
@@ -166,8 +169,8 @@ std::vector<dm::VertexId> first_copies(const dm::Pslg& g) {
 }
 
 // Every point of a point set is in its Delaunay triangulation: of equal
-// points exactly one copy. (Which copy: the first under -p, any without;
-// tests/test_adversarial_regress.cpp DuplicatePointsKeepTheFirstCopy.)
+// points exactly one copy, the first in input order
+// (tests/test_adversarial_regress.cpp DuplicatePointsKeepTheFirstCopy*).
 void check_all_vertices_used(const dm::Mesh& mesh, const dm::Pslg& g) {
   const std::vector<dm::VertexId> first = first_copies(g);
   std::vector<int> used(mesh.num_vertices(), 0);
@@ -177,10 +180,13 @@ void check_all_vertices_used(const dm::Mesh& mesh, const dm::Pslg& g) {
   }
   std::vector<int> copies_used(g.points.size(), 0);
   for (std::size_t i = 0; i < g.points.size(); ++i) copies_used[first[i]] += used[i];
-  for (std::size_t i = 0; i < g.points.size(); ++i)
+  for (std::size_t i = 0; i < g.points.size(); ++i) {
     if (first[i] == i && copies_used[i] != 1)
       fz::fail("point " + std::to_string(i) + " of " + describe(g) + " is in " + std::to_string(copies_used[i]) +
                " copies in the triangulation");
+    if (first[i] == i && !used[i])
+      fz::fail("point " + std::to_string(i) + " of " + describe(g) + ": a later copy is used, not the first");
+  }
 }
 
 // Every input segment of nonzero length joins its endpoints by a path of
@@ -231,6 +237,55 @@ void check_segments_present(const dm::Mesh& mesh, const dm::Pslg& g, const char*
                std::to_string(b) + ") of " + describe(g) + " is not a chain of constrained edges");
   }
 }
+
+#ifdef DELTAMESH_FUZZ_HAVE_REFINE
+// What refine() reports against the mesh: its counts add up, and a
+// "complete" refinement leaves no triangle above its area bound. Angles and
+// areas are recomputed here with a little slack (1e-9 relative) so that a
+// triangle at its bound up to rounding is not a bug.
+void check_refine_stats(const dm::Mesh& mesh, const dm::RefineOptions& ro, const dm::RefineStats& rs,
+                        const dm::Pslg& g) {
+  const std::string what = rs.summary() + " on " + describe(g);
+  DELTAMESH_FUZZ_CHECK(rs.steiner_points <= ro.max_steiner, what);
+  DELTAMESH_FUZZ_CHECK(mesh.num_vertices() == rs.input_vertices + rs.steiner_points, what);
+  DELTAMESH_FUZZ_CHECK(!(rs.budget_exhausted || rs.time_exhausted) || !rs.complete, what);
+  DELTAMESH_FUZZ_CHECK(rs.below_bound == rs.below_small_input_angle + rs.below_segment_protected + rs.below_budget +
+                                             rs.below_precision,
+                       what);
+  DELTAMESH_FUZZ_CHECK(rs.too_large_precision <= rs.too_large, what);
+  if (rs.complete) {
+    DELTAMESH_FUZZ_CHECK(rs.too_large == 0 && rs.below_budget == 0, what);
+  } else {
+    // Incomplete says why: a budget, or triangles left too large.
+    DELTAMESH_FUZZ_CHECK(rs.budget_exhausted || rs.time_exhausted || rs.too_large > 0, what);
+  }
+  const double sin_bound = std::sin(ro.min_angle_deg * (1 - 1e-9) * 3.14159265358979323846 / 180);
+  std::size_t below = 0;
+  for (dm::TriId t = 0; t < mesh.num_triangle_slots(); ++t) {
+    if (!mesh.is_real(t)) continue;
+    const auto v = mesh.triangle(t);
+    const dm::Point& a = mesh.point(v[0]);
+    const dm::Point& b = mesh.point(v[1]);
+    const dm::Point& c = mesh.point(v[2]);
+    const double cross = (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
+    const double l0 = (b.x - a.x) * (b.x - a.x) + (b.y - a.y) * (b.y - a.y);
+    const double l1 = (c.x - b.x) * (c.x - b.x) + (c.y - b.y) * (c.y - b.y);
+    const double l2 = (a.x - c.x) * (a.x - c.x) + (a.y - c.y) * (a.y - c.y);
+    // sin of the smallest angle = cross / (product of the two longer edges).
+    const double lo = std::min({l0, l1, l2});
+    const double den = lo == l0 ? l1 * l2 : (lo == l1 ? l0 * l2 : l0 * l1);
+    if (ro.min_angle_deg > 0 && cross * cross < sin_bound * sin_bound * den) ++below;
+    if (!rs.complete) continue;
+    double bound = ro.max_area;
+    const double tb = ro.use_triangle_area_bounds ? mesh.triangle_area_bound(t) : -1.0;
+    if (tb > 0 && (bound <= 0 || tb < bound)) bound = tb;
+    if (bound > 0 && 0.5 * cross > bound * (1 + 1e-9))
+      fz::fail("refine: complete, but triangle " + std::to_string(t) + " has area " + std::to_string(0.5 * cross) +
+               " above its bound " + std::to_string(bound) + ": " + what);
+  }
+  DELTAMESH_FUZZ_CHECK(below <= rs.below_bound, std::to_string(below) + " triangles below the bound: " + what);
+}
+#endif
 
 }  // namespace
 
@@ -363,19 +418,11 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   }
   if (verbose) std::fprintf(stderr, "--- refine result: %s\n", rs.summary().c_str());
   // Split points on hull edges are rounded: the hull of a refined mesh is
-  // convex only up to rounding, so convexity is not checked exactly.
-  // Known bugs (tests/test_adversarial_regress.cpp, Regress.Refine*Leaves*):
-  // refinement near nearly coincident vertices or without small-angle
-  // protection can leave edges that are not locally Delaunay. Until they
-  // are fixed the Delaunay property after refine() is checked only with
-  // DELTAMESH_FUZZ_STRICT=1; the structure (twins, orientation, Euler,
-  // segments) always is.
-  static const bool strict = std::getenv("DELTAMESH_FUZZ_STRICT") != nullptr;
-  check_mesh(mesh, g, strict, false, nothing_carved, "refine");
+  // convex only up to rounding, so convexity is not checked exactly. The
+  // Delaunay property (unconstrained edges locally Delaunay) always is.
+  check_mesh(mesh, g, true, false, nothing_carved, "refine");
   if (nothing_carved) check_segments_present(mesh, g, "refine");
-  DELTAMESH_FUZZ_CHECK(rs.complete == !(rs.budget_exhausted || rs.time_exhausted), rs.summary());
-  DELTAMESH_FUZZ_CHECK(rs.steiner_points <= ropt.max_steiner, rs.summary());
-  DELTAMESH_FUZZ_CHECK(mesh.num_vertices() == rs.input_vertices + rs.steiner_points, rs.summary());
+  check_refine_stats(mesh, ropt, rs, g);
 #endif
   return 0;
 }

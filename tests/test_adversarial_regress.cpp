@@ -3,8 +3,11 @@
 // with GTEST_SKIP naming the bug; remove the skip with the fix.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <map>
+#include <numbers>
+#include <regex>
 #include <string>
 #include <utility>
 #include <vector>
@@ -59,8 +62,6 @@ TEST(Regress, DuplicatePointsKeepTheFirstCopyWithoutSegments) {
   // order), not the first in input order as the CDT does (cdt.cpp
   // relabels) and delaunay.hpp's DelaunayStats::duplicates describes. The
   // output (and -j) then carries a later copy's id, marker and attributes.
-  GTEST_SKIP() << "bug: Delaunay path keeps a later copy of duplicate points (reported; fix in delaunay.cpp or "
-                  "triangulate.cpp, then remove this skip)";
   const dm::Pslg g = dm::read_node(regress("duplicates_first_copy_not_kept_without_p.node"));
   dm::TriangulateOptions opt;
   opt.use_segments = false;
@@ -95,17 +96,17 @@ TEST(Regress, RefineWithoutSmallAngleProtectionAtTinyScaleStaysDelaunay) {
   EXPECT_TRUE(rep.ok()) << rep.summary();
 }
 
-TEST(Regress, RefineWithoutSmallAngleProtectionLeavesNonDelaunayEdges) {
-  // Bug: with small_angle_protection off, refinement around the small
-  // angles at a segment crossing (budget 320 here) leaves unconstrained
-  // edges that are not locally Delaunay; further insertions hide it again.
-  GTEST_SKIP() << "bug: refine() with small_angle_protection = false leaves non-locally-Delaunay edges "
-                  "(edge 11-317 of refine_no_small_angle_protection_not_delaunay.poly at budget 320; reported)";
+TEST(Regress, SplitCavityTakesTheFarTriangleOnlyByExactIncircle) {
+  // Exposed: a segment split's cavity took both triangles of the segment
+  // unconditionally. The rounded split point lay off the segment's line and
+  // outside the far triangle's circumcircle, which left edges not locally
+  // Delaunay (edges 11-317 and 11-320 at budgets 320 and 330, with
+  // small-angle protection off, off-centres or circumcentres alike).
   const dm::Pslg g = dm::read_poly(regress("refine_no_small_angle_protection_not_delaunay.poly"));
   dm::TriangulateOptions topt;
   topt.domain.keep_convex_hull = true;
   const dm::Mesh base = dm::triangulate(g, topt);
-  for (const std::size_t budget : {std::size_t{320}, std::size_t{330}})
+  for (const std::size_t budget : {std::size_t{313}, std::size_t{320}, std::size_t{330}, std::size_t{1000}})
     for (const dm::SteinerRule rule : {dm::SteinerRule::Offcenter, dm::SteinerRule::Circumcenter}) {
       SCOPED_TRACE(budget);
       dm::Mesh m = base;
@@ -114,33 +115,174 @@ TEST(Regress, RefineWithoutSmallAngleProtectionLeavesNonDelaunayEdges) {
       ro.steiner = rule;
       ro.small_angle_protection = false;
       ro.max_steiner = budget;
-      dm::refine(m, ro);
+      const dm::RefineStats st = dm::refine(m, ro);
       const dm::CheckReport rep = dm::check(m, {.convex_hull = false});
-      EXPECT_TRUE(rep.ok()) << rep.summary();
+      EXPECT_TRUE(rep.ok()) << rep.summary() << "\n" << st.summary();
     }
 }
 
-TEST(Regress, RefineAreaBoundNearlyCoincidentVerticesLeavesNonDelaunayEdge) {
-  // Bug: a vertex within a few ulps of a segment (and another pair of
-  // vertices ulps apart); refining for an area bound only splits segments
-  // down to the precision floor and ends with a non-locally-Delaunay edge,
-  // reporting the refinement complete while 4 triangles are too large.
-  GTEST_SKIP() << "bug: refine() for an area bound near nearly coincident vertices leaves a non-locally-Delaunay "
-                  "edge (refine_area_bound_near_coincident_not_delaunay.poly; reported)";
+TEST(Regress, SplitCavityNearlyCoincidentVerticesAreaBoundStaysDelaunay) {
+  // Exposed: the same far-triangle shortcut with a vertex within ulps of a
+  // segment and a hull edge within ulps of it: refining for an area bound
+  // only ended with edge 4-72 not locally Delaunay (4-60 at budget 56).
+  const dm::Pslg g = dm::read_poly(regress("refine_area_bound_near_coincident_not_delaunay.poly"));
+  dm::TriangulateOptions topt;
+  topt.method = dm::CdtMethod::Lawson;
+  topt.domain.keep_convex_hull = true;
+  const dm::Mesh base = dm::triangulate(g, topt);
+  ASSERT_TRUE(dm::check(base, {.convex_hull = false}).ok());
+  for (const std::size_t budget : {std::size_t{56}, std::size_t{3000}}) {
+    SCOPED_TRACE(budget);
+    dm::Mesh m = base;
+    dm::RefineOptions ro;
+    ro.min_angle_deg = 0;
+    ro.max_area = 1.0 / 64;  // the bounding box [0.5, 1.5]^2, / 64
+    ro.steiner = dm::SteinerRule::Offcenter;
+    ro.encroachment = dm::EncroachmentRule::DiametralCircle;
+    ro.max_steiner = budget;
+    const dm::RefineStats st = dm::refine(m, ro);
+    const dm::CheckReport rep = dm::check(m, {.convex_hull = false});
+    EXPECT_TRUE(rep.ok()) << rep.summary();
+    EXPECT_TRUE(!st.complete || st.too_large == 0) << st.summary();
+  }
+}
+
+TEST(Regress, RefineReportsTrianglesLeftTooLargeAtPrecisionAsIncomplete) {
+  // Exposed by the same input: no split of the segments within ulps of each
+  // other fits, so 4 triangles stay above the area bound, and refinement
+  // said "complete".
   const dm::Pslg g = dm::read_poly(regress("refine_area_bound_near_coincident_not_delaunay.poly"));
   dm::TriangulateOptions topt;
   topt.method = dm::CdtMethod::Lawson;
   topt.domain.keep_convex_hull = true;
   dm::Mesh m = dm::triangulate(g, topt);
-  ASSERT_TRUE(dm::check(m, {.convex_hull = false}).ok());
   dm::RefineOptions ro;
   ro.min_angle_deg = 0;
-  ro.max_area = 1.0 / 64;  // the bounding box [0.5, 1.5]^2, / 64
-  ro.steiner = dm::SteinerRule::Offcenter;
+  ro.max_area = 1.0 / 64;
   ro.encroachment = dm::EncroachmentRule::DiametralCircle;
-  ro.max_steiner = 3000;
   const dm::RefineStats st = dm::refine(m, ro);
-  const dm::CheckReport rep = dm::check(m, {.convex_hull = false});
-  EXPECT_TRUE(rep.ok()) << rep.summary();
-  EXPECT_TRUE(!st.complete || st.too_large == 0) << st.summary();
+  EXPECT_TRUE(dm::check(m, {.convex_hull = false}).ok());
+  EXPECT_FALSE(st.budget_exhausted || st.time_exhausted) << st.summary();
+  EXPECT_GT(st.too_large_precision, 0u) << st.summary();
+  EXPECT_LE(st.too_large_precision, st.too_large) << st.summary();
+  EXPECT_FALSE(st.complete) << st.summary();
+  EXPECT_NE(st.summary().find("at the precision of doubles"), std::string::npos) << st.summary();
+}
+
+class RegressCli : public dm::test::TempDirTest {};
+
+TEST_F(RegressCli, TrianglesLeftTooLargeAtPrecisionReportedByStatsAndExitCode) {
+  std::filesystem::copy_file(regress("refine_area_bound_near_coincident_not_delaunay.poly"), path("a.poly"));
+  const dm::test::CliResult r = run("-pc --cdt=lawson -a0.015625 --encroachment=circle -V --stats=json a.poly");
+  EXPECT_EQ(r.code, 3) << r.err;
+  const std::regex warning("refinement left [1-9][0-9]* triangles above their size bound \\([1-9][0-9]* at the "
+                           "precision of doubles\\)");
+  EXPECT_TRUE(std::regex_search(r.err, warning)) << r.err;
+  EXPECT_NE(r.out.find("\"complete\":false,\"budget_exhausted\":false"), std::string::npos) << r.out;
+  EXPECT_TRUE(std::regex_search(r.out, std::regex("\"too_large\":[1-9][0-9]*,\"too_large_precision\":[1-9]"))) << r.out;
+  EXPECT_TRUE(std::regex_search(r.out, std::regex("\n    at the precision of doubles: [1-9]"))) << r.out;
+  EXPECT_TRUE(exists("a.1.ele"));
+}
+
+TEST(Regress, RefineReservesNoMoreThanTheBudgetAllows) {
+  // Exposed: with a regional area bound of 9.5e-7 on a domain of area ~50
+  // refine() reserved room for ~10^8 triangles up front (1.3 GB), although
+  // the budget of 20 Steiner points allows 40 more triangles.
+  const dm::Pslg g = dm::read_poly(regress("refine_area_bound_reserve_huge_allocation.poly"));
+  dm::TriangulateOptions topt;
+  topt.method = dm::CdtMethod::Lawson;
+  topt.domain.fill = dm::FillRule::EvenOdd;
+  topt.domain.keep_convex_hull = true;
+  topt.domain.ignore_holes = true;
+  topt.domain.regional_area_bounds = true;
+  dm::Mesh m = dm::triangulate(g, topt);
+  ASSERT_TRUE(m.has_triangle_area_bounds());
+  const std::size_t before = m.num_triangle_slots();
+  dm::RefineOptions ro;
+  ro.encroachment = dm::EncroachmentRule::DiametralCircle;
+  ro.max_steiner = 20;
+  const dm::RefineStats st = dm::refine(m, ro);
+  EXPECT_TRUE(st.budget_exhausted) << st.summary();
+  EXPECT_TRUE(dm::check(m, {.convex_hull = false}).ok());
+  EXPECT_LE(m.tri_v_mut().capacity(), 3 * (before + 2 * 20 + 64));
+  EXPECT_LE(m.points_mut().capacity(), m.num_vertices() + 64);
+}
+
+TEST(Regress, RefineBoundarySplitPointStaysInsideItsPiece) {
+  // Exposed: a boundary segment's midpoint rounded outside its piece of the
+  // domain and into another piece touching it within ulps (crossing
+  // segments, even-odd fill): the fans at vertex 28 overlapped.
+  const dm::Pslg g = dm::read_poly(regress("refine_boundary_split_point_in_neighbouring_piece.poly"));
+  dm::TriangulateOptions topt;
+  topt.method = dm::CdtMethod::Lawson;
+  topt.domain.fill = dm::FillRule::EvenOdd;
+  const dm::Mesh base = dm::triangulate(g, topt);
+  ASSERT_TRUE(dm::check(base, {.convex_hull = false}).ok());
+  for (const std::size_t budget : {std::size_t{5}, std::size_t{20}, std::size_t{300}, dm::kAutomaticBudget}) {
+    SCOPED_TRACE(budget);
+    dm::Mesh m = base;
+    dm::RefineOptions ro;
+    ro.min_angle_deg = 33;
+    ro.max_area = 5.0625;
+    ro.encroachment = dm::EncroachmentRule::DiametralCircle;
+    ro.max_steiner = budget;
+    const dm::RefineStats st = dm::refine(m, ro);
+    const dm::CheckReport rep = dm::check(m, {.convex_hull = false});
+    EXPECT_TRUE(rep.ok()) << rep.summary() << "\n" << st.summary();
+  }
+}
+
+TEST(Regress, RefineFinishAfterABudgetStopIsLinear) {
+  // Exposed: after a budget stop, finish() asked the decision procedure
+  // again why each bad triangle was left; on points on a circle every
+  // Steiner point's cavity is the whole mesh, so that took seconds (3000
+  // points: ~5 s) for a refinement stopped at once.
+  const int n = 3000;
+  std::vector<dm::Point> pts;
+  for (int i = 0; i < n; ++i)
+    pts.push_back({std::cos(2 * std::numbers::pi * i / n), std::sin(2 * std::numbers::pi * i / n)});
+  dm::Pslg g;
+  g.points = pts;
+  dm::TriangulateOptions topt;
+  topt.use_segments = false;
+  topt.domain.keep_convex_hull = true;
+  dm::Mesh m = dm::triangulate(g, topt);
+  dm::RefineOptions ro;
+  ro.min_angle_deg = 20;
+  ro.max_steiner = 0;
+  const dm::RefineStats st = dm::refine(m, ro);
+  EXPECT_TRUE(st.budget_exhausted);
+  EXPECT_GT(st.below_budget, std::size_t{n / 2}) << st.summary();
+  EXPECT_LT(st.seconds, 1.0) << st.summary();
+  EXPECT_TRUE(dm::check(m, {.convex_hull = false}).ok());
+}
+
+TEST(Regress, CdtRepeatedSegmentFollowsItsBentChain) {
+  // Exposed: a segment given again after its first copy was split at
+  // rounded crossing vertices crossed that (ulp-bent) chain in the middle of
+  // a piece, adding vertices without end: a non-Delaunay edge, or an
+  // InputError ("more vertices added at segment crossings ...").
+  const dm::Pslg full = dm::read_poly(regress("cdt_repeated_segment_crosses_bent_chain.poly"));
+  for (const std::size_t nseg : {std::size_t{8}, full.segments.size()})
+    for (const dm::CdtMethod method :
+         {dm::CdtMethod::Fast, dm::CdtMethod::Ct, dm::CdtMethod::Lawson, dm::CdtMethod::Lifting})
+      for (const bool hull : {false, true}) {
+        SCOPED_TRACE(std::to_string(nseg) + " segments, " + std::string(dm::to_string(method)) +
+                     (hull ? ", -c" : ""));
+        dm::Pslg g = full;
+        g.segments.resize(nseg);
+        dm::TriangulateOptions topt;
+        topt.method = method;
+        topt.domain.keep_convex_hull = hull;
+        dm::Mesh m;
+        ASSERT_NO_THROW(m = dm::triangulate(g, topt));
+        // Three segments cross pairwise at most three times.
+        EXPECT_LE(m.num_vertices(), g.points.size() + 3);
+        dm::CheckOptions co;
+        co.convex_hull = false;
+        co.delaunay = method != dm::CdtMethod::Ct;
+        if (hull) co.pslg = &g;
+        const dm::CheckReport rep = dm::check(m, co);
+        EXPECT_TRUE(rep.ok()) << rep.summary();
+      }
 }

@@ -141,6 +141,7 @@ TEST(Delaunay, DuplicatesMergedAndMapped) {
       }
       ++mapped;
       EXPECT_EQ(pts[d], pts[i]);
+      EXPECT_LT(d, i) << "of equal points the first in input order is kept";
       EXPECT_EQ(st.duplicate_of[d], kNone) << "a duplicate maps to another duplicate";
       EXPECT_EQ(m.out_edge(static_cast<VertexId>(i)), kNone);
     }

@@ -519,3 +519,74 @@ TEST(Refine, ThroughTheTriangulatePipeline) {
     }
   }
 }
+
+TEST(Refine, RegionalAttributesStayInTheirRegions) {
+  // -pq30a0.002A: the unit square split by an interior segment x = 0.3 into
+  // regions with attributes 1 (left) and 2 (right). Splitting the interior
+  // segment rebuilds triangles on both sides at once: each must keep its own
+  // side's attribute.
+  dm::Pslg g;
+  g.points = {{0, 0}, {0.3, 0}, {1, 0}, {1, 1}, {0.3, 1}, {0, 1}};
+  for (dm::VertexId i = 0; i < 6; ++i) g.segments.push_back({i, (i + 1) % 6, 1});
+  g.segments.push_back({1, 4, 2});
+  g.regions.push_back({{0.1, 0.5}, 1.0, -1});
+  g.regions.push_back({{0.7, 0.5}, 2.0, -1});
+  for (const double area : {0.002, 0.0005}) {
+    SCOPED_TRACE(area);
+    dm::TriangulateOptions topt;
+    topt.domain.regional_attributes = true;
+    topt.refine = opts([&](dm::RefineOptions& o) {
+      o.min_angle_deg = 30;
+      o.max_area = area;
+    });
+    dm::TriangulateStats tst;
+    const dm::Mesh mesh = dm::triangulate(g, topt, &tst);
+    expect_valid(mesh, false);
+    EXPECT_TRUE(tst.refine.complete) << tst.refine.summary();
+    EXPECT_GT(tst.refine.segment_splits, 0u);
+    ASSERT_EQ(mesh.num_triangle_attributes(), 1u);
+    std::size_t wrong = 0, left = 0, right = 0;
+    for (dm::TriId t = 0; t < mesh.num_triangle_slots(); ++t) {
+      if (!mesh.is_real(t)) continue;
+      const auto v = mesh.triangle(t);
+      const double cx = (mesh.point(v[0]).x + mesh.point(v[1]).x + mesh.point(v[2]).x) / 3;
+      const double want = cx < 0.3 ? 1.0 : 2.0;
+      (cx < 0.3 ? left : right) += 1;
+      if (mesh.triangle_attributes()[t] != want) ++wrong;
+    }
+    EXPECT_EQ(wrong, 0u) << "of " << mesh.num_triangles() << " triangles";
+    EXPECT_GT(left, 10u);
+    EXPECT_GT(right, 10u);
+  }
+}
+
+TEST(Refine, TrianglesAboveTheirAreaBoundAreSplitAtSmallInputAngles) {
+  // A square (area bound 0.5) with a square hole, and a triangle meeting it
+  // at a 26.6° angle at (4, 4). Segments next to that small angle were not
+  // split on behalf of triangles that were only too large (the rule against
+  // cascades, meant for skinny ones): 2 triangles of area 2 were left.
+  dm::Pslg g;
+  g.points = {{0, 0}, {4, 0}, {4, 4}, {0, 4}, {1, 1}, {3, 1}, {3, 3}, {1, 3}, {6, 0}};
+  for (dm::VertexId i = 0; i < 4; ++i) {
+    g.segments.push_back({i, (i + 1) % 4, 1});
+    g.segments.push_back({4 + i, 4 + (i + 1) % 4, 2});
+  }
+  g.segments.push_back({1, 8, 3});
+  g.segments.push_back({8, 2, 3});
+  g.holes.push_back({2, 2});
+  g.regions.push_back({{0.5, 2}, 1.0, 0.5});
+  g.regions.push_back({{4.5, 1}, 2.0, -1});
+  dm::TriangulateOptions topt;
+  topt.domain.regional_area_bounds = true;
+  topt.refine = opts([](dm::RefineOptions& o) { o.min_angle_deg = 20; });
+  dm::TriangulateStats tst;
+  const dm::Mesh mesh = dm::triangulate(g, topt, &tst);
+  expect_valid(mesh, false);
+  EXPECT_TRUE(tst.refine.complete) << tst.refine.summary();
+  EXPECT_EQ(tst.refine.too_large, 0u) << tst.refine.summary();
+  for (dm::TriId t = 0; t < mesh.num_triangle_slots(); ++t) {
+    if (!mesh.is_real(t) || mesh.triangle_area_bound(t) <= 0) continue;
+    const auto v = mesh.triangle(t);
+    EXPECT_LE(0.5 * dm::orient2d(mesh.point(v[0]), mesh.point(v[1]), mesh.point(v[2])), 0.5);
+  }
+}

@@ -466,8 +466,15 @@ class Run {
     }
     if (refined_) {
       std::printf("Quality mesh: %s\n", refine_stats_.summary().c_str());
-      if (!refine_stats_.complete)
+      if (refine_stats_.budget_exhausted || refine_stats_.time_exhausted)
         std::fprintf(stderr, "deltamesh: warning: refinement stopped by its budget before reaching the requested quality\n");
+      else if (!refine_stats_.complete)
+        std::fprintf(stderr, "deltamesh: warning: refinement left %zu triangles above their size bound%s\n",
+                     refine_stats_.too_large,
+                     refine_stats_.too_large_precision == 0
+                         ? ""
+                         : (" (" + std::to_string(refine_stats_.too_large_precision) + " at the precision of doubles)")
+                               .c_str());
     }
     for (const std::string& w : written) std::printf("  wrote %s\n", w.c_str());
     if (!check_summary_.empty()) std::printf("Check: %s\n", check_summary_.c_str());

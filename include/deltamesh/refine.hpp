@@ -5,7 +5,7 @@
 //
 //   deltamesh::Mesh mesh = deltamesh::triangulate(pslg);   // carved CDT
 //   deltamesh::RefineStats st = deltamesh::refine(mesh, {.min_angle_deg = 30, .max_area = 0.01});
-//   if (!st.complete) ...                                   // a budget stopped it; mesh still valid
+//   if (!st.complete) ...   // a budget stopped it or triangles are too large; mesh still valid
 #pragma once
 #include <cstddef>
 #include <functional>
@@ -133,8 +133,10 @@ struct RefineOptions {
 };
 
 struct RefineStats {
-  // False when a budget or the time limit stopped refinement; the mesh is
-  // valid either way.
+  // False when a budget or the time limit stopped refinement, or when
+  // triangles are left above their size bound (too_large); the mesh is valid
+  // either way. Triangles left below the angle bound for the reasons counted
+  // below do not make it incomplete.
   bool complete = true;
   bool budget_exhausted = false;
   bool time_exhausted = false;
@@ -156,6 +158,7 @@ struct RefineStats {
   std::size_t below_precision = 0;          // at the resolution of doubles: no distinct point fits
   // Triangles still above their area / edge-length bound.
   std::size_t too_large = 0;
+  std::size_t too_large_precision = 0;  // ... because no split of them fits at the resolution of doubles
 
   double min_angle_deg = 0.0;  // the bound refined for
   double seconds = 0.0;

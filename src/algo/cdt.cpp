@@ -287,6 +287,42 @@ void CdtBuilder::resolve_crossing(const Piece& p, HalfEdgeId cd) {
       pieces_.push_back({p.a, p.b, p.seg});
       return;
     }
+    // Nearly collinear pieces (an overlapping segment whose chain is bent
+    // at rounded crossing vertices, a segment given twice): their crossing
+    // point is ill-conditioned, lands anywhere along them, and the next
+    // copy crosses the bent chain again, without end. When both ends of one
+    // lie within rounding distance of the other's line, strictly between its
+    // ends, the longer one is routed through them instead.
+    auto along = [&](const Point& u, const Point& v, const Point& q) {  // q's offset from line uv is within tol
+      const double ux = v.x - u.x, uy = v.y - u.y;
+      const double len = std::sqrt(ux * ux + uy * uy);
+      const double dot = (q.x - u.x) * ux + (q.y - u.y) * uy;
+      return len > 0 && std::fabs(orient2d(u, v, q)) <= tol * len && dot > 0 && dot < len * len;
+    };
+    auto first_from = [](const Point& u, const Point& v, const Point& q1, const Point& q2) {
+      const double ux = v.x - u.x, uy = v.y - u.y;
+      return (q1.x - u.x) * ux + (q1.y - u.y) * uy <= (q2.x - u.x) * ux + (q2.y - u.y) * uy;
+    };
+    if (along(pa, pb, pc) && along(pa, pb, pd)) {
+      ++st_.crossings_snapped;
+      const bool c_first = first_from(pa, pb, pc, pd);
+      const VertexId x = c_first ? c : d, y = c_first ? d : c;
+      pieces_.push_back({y, p.b, p.seg});
+      pieces_.push_back({x, y, p.seg});
+      pieces_.push_back({p.a, x, p.seg});
+      return;
+    }
+    if (along(pc, pd, pa) && along(pc, pd, pb)) {
+      ++st_.crossings_snapped;
+      release(cd);
+      const bool a_first = first_from(pc, pd, pa, pb);
+      const VertexId x = a_first ? p.a : p.b, y = a_first ? p.b : p.a;
+      pieces_.push_back({y, d, other});
+      pieces_.push_back({x, y, other});
+      pieces_.push_back({c, x, other});
+      pieces_.push_back({p.a, p.b, p.seg});
+      return;
+    }
   }
   for (const Point& q : cand) {
     if (!split_fits(cd, q)) continue;
@@ -499,11 +535,10 @@ Mesh constrained_triangulation(const Pslg& pslg, const CdtOptions& options, CdtS
   dopt.keep_ghosts = true;
   Mesh mesh = delaunay(pslg.points, dopt, &ds);
   st.duplicate_vertices = ds.duplicates;
-  std::vector<VertexId> canonical;
+  std::vector<VertexId> canonical;  // delaunay() keeps the first copy of equal points
   if (ds.duplicates > 0) {
     canonical.resize(n);
     for (VertexId v = 0; v < n; ++v) canonical[v] = ds.duplicate_of[v] == kNone ? v : ds.duplicate_of[v];
-    keep_lowest_copies(mesh, canonical);
   }
   st.triangulate_seconds = seconds_since(t0);
   if (pslg.segments.empty()) return mesh;

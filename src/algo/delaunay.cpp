@@ -2,8 +2,11 @@
 // the previous insertion, split + Lawson flips, ghost triangles for the hull.
 #include "deltamesh/delaunay.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "algo/insertion.hpp"
 #include "core/spatial_sort.hpp"
@@ -292,9 +295,8 @@ Mesh delaunay(std::span<const Point> points, const DelaunayOptions& options, Del
   else
     make_first_triangle(mesh, 0, static_cast<VertexId>(i2), static_cast<VertexId>(i1));
 
-  std::vector<VertexId> dup_of;  // in insertion order, only when asked for
-  if (stats) dup_of.assign(n, kNone);
-  std::size_t duplicates = 0;
+  // (duplicate, the vertex it met) in insertion order.
+  std::vector<std::pair<VertexId, VertexId>> dups;
   {
     // A closed triangulation of k vertices plus the vertex at infinity has
     // 2k - 2 triangles; the builder's arrays are sized for that once.
@@ -304,10 +306,7 @@ Mesh delaunay(std::span<const Point> points, const DelaunayOptions& options, Del
       if (k == i1 || k == i2) continue;
       const VertexId v = static_cast<VertexId>(k);
       const VertexId got = builder.insert(v, hint);
-      if (got != v) {
-        ++duplicates;
-        if (stats) dup_of[k] = got;
-      }
+      if (got != v) dups.emplace_back(v, got);
     }
   }
   mesh.recount();
@@ -333,10 +332,33 @@ Mesh delaunay(std::span<const Point> points, const DelaunayOptions& options, Del
   }
   mesh.points_mut().assign(points.begin(), points.end());
   if (stats) {
-    stats->duplicates = duplicates;
+    stats->duplicates = dups.size();
     stats->duplicate_of.assign(n, kNone);
-    for (std::size_t k = 0; k < n; ++k)
-      if (dup_of[k] != kNone) stats->duplicate_of[order[k]] = order[dup_of[k]];
+  }
+  if (!dups.empty()) {
+    // Of equal points the first in input order is the one kept (as the CDT
+    // and DelaunayStats promise, and the CLI's ids, markers and attributes
+    // assume); the insertion order may have met a later copy first.
+    std::vector<VertexId> first(n);
+    for (VertexId v = 0; v < n; ++v) first[v] = v;
+    for (const auto& [d, kept] : dups) first[order[kept]] = std::min(first[order[kept]], order[d]);
+    for (VertexId& v : mesh.tri_v_mut())
+      if (v < n) v = first[v];
+    std::vector<HalfEdgeId>& ve = mesh.vert_edge_mut();
+    for (const auto& [d, kept] : dups) {
+      const VertexId k = order[kept];
+      if (first[k] != k && ve[k] != kNone) {
+        ve[first[k]] = ve[k];
+        ve[k] = kNone;
+      }
+    }
+    if (stats)
+      for (const auto& [d, kept] : dups) {
+        const VertexId k = order[kept], f = first[k];
+        stats->duplicate_of[order[d]] = f;
+        if (f != k) stats->duplicate_of[k] = f;
+        stats->duplicate_of[f] = kNone;
+      }
   }
   return mesh;
 }

@@ -143,6 +143,11 @@ std::string QualityReport::text() const {
     }
   }
   if (above_area > 0) o << "  triangles above their area bound: " << above_area << "\n";
+  if (refine && refine->too_large > 0) {
+    o << "  triangles left above their size bound by refinement: " << refine->too_large << "\n";
+    if (refine->too_large_precision)
+      o << "    at the precision of doubles: " << refine->too_large_precision << "\n";
+  }
   if (refine) o << "  " << refine->summary() << "\n";
   return o.str();
 }
@@ -176,7 +181,8 @@ std::string QualityReport::json() const {
       << ",\"below_bound\":" << s.below_bound << ",\"below_reasons\":{\"small_input_angle\":"
       << s.below_small_input_angle << ",\"segment_protected\":" << s.below_segment_protected
       << ",\"budget\":" << s.below_budget << ",\"precision\":" << s.below_precision << "}"
-      << ",\"too_large\":" << s.too_large << ",\"seconds\":" << num(s.seconds) << "}";
+      << ",\"too_large\":" << s.too_large << ",\"too_large_precision\":" << s.too_large_precision
+      << ",\"seconds\":" << num(s.seconds) << "}";
   }
   o << "}";
   return o.str();

@@ -223,6 +223,10 @@ class Refiner {
   Eval eval(TriId t, const Point& a, const Point& b, const Point& c) const;
   TriView view(TriId t) const;
   void consider(TriId t);
+  void remember_skip(TriId t, Reason r) {
+    if (t >= why_.size()) why_.resize(std::max<std::size_t>(t + 1, tv_.size() / 3), Reason::None);
+    why_[t] = r;
+  }
   bool alive(const QueueEntry& e) const {
     return e.t < tv_.size() / 3 && tv_[3 * e.t] == e.a && tv_[3 * e.t + 1] == e.b && tv_[3 * e.t + 2] == e.c;
   }
@@ -253,6 +257,8 @@ class Refiner {
   Walk walk(TriId t, const Point& c) const;
   bool cavity(const Point& c, TriId seed);
   bool split_cavity(HalfEdgeId e, const Point& m);
+  bool in_circumcircle(TriId t, const Point& p) const;
+  bool keep_split_inside(HalfEdgeId e, Point& m) const;
   bool grow(const Point& c, std::size_t stack_base);
   void record_boundary(HalfEdgeId e);
   bool boundary_visible(const Point& c, std::size_t from, std::size_t to) const;
@@ -281,6 +287,7 @@ class Refiner {
   bool split_segment(HalfEdgeId e, const Point* at = nullptr, int depth = 0);
   void mirror(std::uint32_t seg, VertexId apex, double radius, int depth);
   TriId take_slot(std::size_t i, std::size_t fan, VertexId v);
+  void carry_attributes();
   bool budget_left();
   HalfEdgeId edge(VertexId a, VertexId b, HalfEdgeId hint) const;
   void finish();
@@ -334,6 +341,9 @@ class Refiner {
   BadQueue queue_;
   std::vector<SubsegmentRef> encroached_;
   std::vector<QueueEntry> skipped_;  // transient skips, for another look
+  // Per triangle slot: why it was last left alone (reset when the slot is
+  // rewritten), so that finish() classifies what is left in linear time.
+  std::vector<Reason> why_;
 
   // Scratch, reused by every insertion.
   std::vector<TriId> cav_;
@@ -341,6 +351,7 @@ class Refiner {
   std::vector<HalfEdgeId> stack_;
   std::vector<TriId> fan_;
   std::vector<HalfEdgeId> enc_scratch_;
+  std::vector<double> attr_scratch_;
   std::size_t side_split_ = 0;  // split cavities: boundary edges of side one
   Decision decision_;
 
@@ -556,10 +567,15 @@ void Refiner::reserve_for_area_bounds() {
   // Refinement to an area bound A ends with triangles of mean area ~0.6 A.
   const double tris = 1.75 * estimate + static_cast<double>(nt);
   if (tris > 1e10) return;
-  const auto want_t = static_cast<std::size_t>(tris);
+  auto want_t = static_cast<std::size_t>(tris);
   // Size bounds ask for about want_t / 2 vertices: the automatic budget
   // leaves room for four times that.
   if (opt_.max_steiner == kAutomaticBudget) budget_ = std::max(budget_, 2 * want_t);
+  // Reserve no more than the Steiner budget can fill (a point adds at most
+  // two triangles) and no more than kMaxReserve triangles: a tiny area bound
+  // with a small budget asked for gigabytes up front (found by fuzz_mesh).
+  constexpr std::size_t kMaxReserve = std::size_t{1} << 23;
+  want_t = std::min({want_t, nt + 2 * std::min(budget_, kMaxReserve), kMaxReserve});
   if (want_t > nt) {
     m_.reserve(pts_.size() + want_t / 2 + 16, want_t + 16);
     fl_.reserve(3 * (want_t + 16));
@@ -627,6 +643,7 @@ TriView Refiner::view(TriId t) const {
 }
 
 void Refiner::consider(TriId t) {
+  if (t < why_.size()) why_[t] = Reason::None;
   const Eval ev = eval(t);
   if (!ev.skinny && !ev.large) return;
   const QueueEntry q{t, tv_[3 * t], tv_[3 * t + 1], tv_[3 * t + 2]};
@@ -1071,6 +1088,43 @@ bool Refiner::boundary_visible(const Point& c, std::size_t from, std::size_t to)
   return true;
 }
 
+bool Refiner::in_circumcircle(TriId t, const Point& p) const {
+  return incircle(pts_[tv_[3 * t]], pts_[tv_[3 * t + 1]], pts_[tv_[3 * t + 2]], p) > 0;
+}
+
+// A boundary segment's rounded split point may fall outside the domain,
+// and where pieces of the domain touch (a vertex shared by separate fans, a
+// nearly collinear boundary edge of another piece) inside a neighbouring
+// piece: the new triangles would overlap it. Keeps m on the segment or
+// inside, strictly between a and b (exact tests): m itself or the nearest
+// double at most two ulps away per coordinate; false when none is.
+bool Refiner::keep_split_inside(HalfEdgeId e, Point& m) const {
+  const Point& a = pts_[tv_[e]];
+  const Point& b = pts_[tv_[next_edge(e)]];
+  const Point& apex = pts_[tv_[prev_edge(e)]];
+  auto inside = [&](const Point& c) {
+    return orient2d(a, b, c) >= 0 && orient2d(b, apex, c) > 0 && orient2d(apex, a, c) > 0 && diametral_dot(a, b, c) < 0;
+  };
+  if (inside(m)) return true;
+  auto step = [](double v, int k) {
+    for (; k > 0; --k) v = std::nextafter(v, INFINITY);
+    for (; k < 0; ++k) v = std::nextafter(v, -INFINITY);
+    return v;
+  };
+  for (int r = 1; r <= 2; ++r)
+    for (int d = 1; d <= 2 * r; ++d)  // nearest first: axis steps, then diagonals
+      for (int dx = -r; dx <= r; ++dx)
+        for (int dy = -r; dy <= r; ++dy) {
+          if (std::max(std::abs(dx), std::abs(dy)) != r || std::abs(dx) + std::abs(dy) != d) continue;
+          const Point c{step(m.x, dx), step(m.y, dy)};
+          if (inside(c)) {
+            m = c;
+            return true;
+          }
+        }
+  return false;
+}
+
 // Cavity of point c (inside seed or on one of its unconstrained edges).
 bool Refiner::cavity(const Point& c, TriId seed) {
   cav_.clear();
@@ -1091,11 +1145,16 @@ bool Refiner::cavity(const Point& c, TriId seed) {
 
 // Cavity of point m splitting the constrained edge e = (a -> b): side one
 // (e's triangle) then side two (its twin's), each boundary running b ... a
-// and a ... b respectively.
+// and a ... b respectively. Both triangles of e join only when m lies
+// strictly inside their circumcircles (exact incircle), like every other
+// triangle: m is rounded and may lie off the segment's line, and a
+// far-side triangle whose circle misses it would keep an edge that is not
+// locally Delaunay against m. Then the split fails.
 bool Refiner::split_cavity(HalfEdgeId e, const Point& m) {
   cav_.clear();
   bnd_.clear();
   stack_.clear();
+  if (!in_circumcircle(tri_of(e), m)) return false;
   cav_.push_back(tri_of(e));
   stack_.push_back(prev_edge(e));
   stack_.push_back(next_edge(e));
@@ -1103,6 +1162,7 @@ bool Refiner::split_cavity(HalfEdgeId e, const Point& m) {
   side_split_ = bnd_.size();
   const HalfEdgeId f = tw_[e];
   if (f != kNone) {
+    if (!in_circumcircle(tri_of(f), m)) return false;
     cav_.push_back(tri_of(f));
     stack_.push_back(prev_edge(f));
     stack_.push_back(next_edge(f));
@@ -1276,7 +1336,10 @@ void Refiner::decide_segments(const std::vector<HalfEdgeId>& enc, const Eval& ev
       why = Reason::Protected;
       continue;
     }
-    if (refuse_split(e, ev)) {
+    // The rule against cascades is for skinny triangles (as the small-angle
+    // skip in decide()): a triangle above its size bound gets its split, and
+    // size bounds end those splits.
+    if (!ev.large && refuse_split(e, ev)) {
       if (why == Reason::None) why = Reason::SmallAngle;
       continue;
     }
@@ -1320,13 +1383,24 @@ TriId Refiner::take_slot(std::size_t i, std::size_t /*fan*/, VertexId v) {
     ++appended_;
     return t;
   }
-  const TriId t = m_.add_triangle(v, v, v);  // resizes every per-triangle array
+  return m_.add_triangle(v, v, v);  // resizes every per-triangle array
+}
+
+// Triangle attributes of the fan fan_[0..n): each new triangle takes those
+// of the cavity triangle on its boundary edge, as area bounds do. A segment
+// split's cavity spans both sides of the segment, so slots (and the
+// attributes they held) pass from one region to the other; regional
+// attributes (-A) must not leak across it.
+void Refiner::carry_attributes() {
   const std::size_t na = m_.num_triangle_attributes();
-  if (na > 0) {
-    std::vector<double>& at = m_.triangle_attributes();
-    for (std::size_t k = 0; k < na; ++k) at[t * na + k] = at[cav_[0] * na + k];
-  }
-  return t;
+  if (na == 0) return;
+  std::vector<double>& at = m_.triangle_attributes();
+  const std::size_t n = bnd_.size();
+  attr_scratch_.resize(n * na);
+  for (std::size_t i = 0; i < n; ++i)  // read every source before writing any slot
+    for (std::size_t k = 0; k < na; ++k) attr_scratch_[i * na + k] = at[tri_of(bnd_[i].inner) * na + k];
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t k = 0; k < na; ++k) at[fan_[i] * na + k] = attr_scratch_[i * na + k];
 }
 
 // Interpolated attributes for a new vertex: barycentric in the seed triangle.
@@ -1383,6 +1457,7 @@ void Refiner::insert_interior(const Point& c, TriId seed) {
     if (carry_bounds_) m_.set_triangle_area_bound(t, b.area_bound);
   }
   ve_[v] = 3 * fan_[0];
+  carry_attributes();
   for (std::size_t i = 0; i < n; ++i) {
     consider(fan_[i]);
     if (bnd_[i].flags & kConstrained) check_encroached(3 * fan_[i] + 1, v);
@@ -1392,11 +1467,11 @@ void Refiner::insert_interior(const Point& c, TriId seed) {
 // Splits the constrained edge e = (a -> b) at its split point.
 bool Refiner::split_segment(HalfEdgeId e, const Point* at, int depth) {
   const VertexId a = tv_[e], b = tv_[next_edge(e)];
-  const Point mp = at ? *at : split_point(a, b);
+  Point mp = at ? *at : split_point(a, b);
   const int marker = has_markers_ ? mk_[e] : 0;
   const std::uint8_t flags = fl_[e];
   const bool boundary = tw_[e] == kNone;
-  if (!split_cavity(e, mp)) {
+  if ((boundary && !keep_split_inside(e, mp)) || !split_cavity(e, mp)) {
     // The split point is off the segment's line by rounding and some
     // neighbouring triangle is too flat to take it: leave this segment.
     ++st_.failed_splits;
@@ -1478,6 +1553,7 @@ bool Refiner::split_segment(HalfEdgeId e, const Point* at, int depth) {
     tw_[bm2] = mb1;
   }
   ve_[v] = mb1;
+  carry_attributes();
   for (std::size_t i = 0; i < n; ++i) {
     consider(fan_[i]);
     if (bnd_[i].flags & kConstrained) check_encroached(3 * fan_[i] + 1, v);
@@ -1626,6 +1702,7 @@ void Refiner::run() {
       case Decision::Skip:
         if (decision_.reason == Reason::SmallAngle) ++st_.small_angle_skips;
         if (decision_.transient) skipped_.push_back(q);
+        if (decision_.reason != Reason::None) remember_skip(q.t, decision_.reason);
         break;
       case Decision::Insert:
         if (!budget_left()) break;
@@ -1644,6 +1721,7 @@ void Refiner::run() {
         // Requeue the triangle for another look, unless no split could be
         // made (then the same decision would come back forever).
         if (split && alive(q)) consider(q.t);
+        else if (!split && !stopped_) remember_skip(q.t, Reason::Precision);
         break;
       }
     }
@@ -1654,27 +1732,32 @@ void Refiner::run() {
 void Refiner::finish() {
   m_.set_live_real(m_.live_real() + appended_);
   appended_ = 0;
-  st_.complete = !st_.budget_exhausted && !st_.time_exhausted;
-  // Classify what is left: ask the decision procedure (read-only) why.
+  const bool stopped = st_.budget_exhausted || st_.time_exhausted;
+  // Classify what is left by the reason recorded when each triangle was
+  // last left alone (linear: no decision is repeated here). A bad triangle
+  // without one was still waiting when a budget stopped refinement.
   const std::size_t nt = tv_.size() / 3;
-  encroached_.clear();
   for (TriId t = 0; t < nt; ++t) {
     const Eval ev = eval(t);
-    if (ev.large) ++st_.too_large;
+    if (!ev.skinny && !ev.large) continue;
+    Reason why = t < why_.size() ? why_[t] : Reason::None;
+    if (why == Reason::None) why = stopped ? Reason::Budget : Reason::Precision;
+    if (ev.large) {
+      ++st_.too_large;
+      if (why == Reason::Precision) ++st_.too_large_precision;
+    }
     if (!ev.skinny) continue;
     ++st_.below_bound;
-    decide(t, decision_);
-    if (decision_.kind == Decision::Skip) {
-      switch (decision_.reason) {
-        case Reason::SmallAngle: ++st_.below_small_input_angle; break;
-        case Reason::Protected: ++st_.below_segment_protected; break;
-        case Reason::Budget: ++st_.below_budget; break;
-        default: ++st_.below_precision; break;
-      }
-    } else {
-      ++st_.below_budget;
+    switch (why) {
+      case Reason::SmallAngle: ++st_.below_small_input_angle; break;
+      case Reason::Protected: ++st_.below_segment_protected; break;
+      case Reason::Budget: ++st_.below_budget; break;
+      default: ++st_.below_precision; break;
     }
   }
+  // Complete: no budget stopped it and every triangle is within its size
+  // bound (skinny triangles may remain for the reasons counted above).
+  st_.complete = !stopped && st_.too_large == 0;
   st_.seconds = std::chrono::duration<double>(Clock::now() - start_).count();
 }
 
@@ -1682,7 +1765,8 @@ void Refiner::finish() {
 
 std::string RefineStats::summary() const {
   std::ostringstream out;
-  out << "refinement " << (complete ? "complete" : "stopped early");
+  const bool stopped = budget_exhausted || time_exhausted;
+  out << "refinement " << (complete ? "complete" : (stopped ? "stopped early" : "incomplete"));
   if (budget_exhausted) out << " (Steiner budget reached)";
   if (time_exhausted) out << " (time limit reached)";
   out << ": " << steiner_points << " Steiner points (" << segment_splits << " on segments, " << interior_points
@@ -1694,7 +1778,10 @@ std::string RefineStats::summary() const {
     if (below_budget) out << " " << below_budget << " left by the budget";
     if (below_precision) out << " " << below_precision << " at the precision of doubles";
   }
-  if (too_large > 0) out << "; " << too_large << " triangles above their size bound";
+  if (too_large > 0) {
+    out << "; " << too_large << " triangles above their size bound";
+    if (too_large_precision) out << " (" << too_large_precision << " at the precision of doubles)";
+  }
   return out.str();
 }
 
