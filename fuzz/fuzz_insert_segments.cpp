@@ -204,6 +204,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   try {
     dm::insert_segments(mesh, extra, iopt, &st);
   } catch (const dm::InputError& e) {  // SegmentError, IntersectingSegments among them
+    if (verbose) std::fprintf(stderr, "--- insert_segments threw: %s\n", e.what());
     if (internal_error(e)) fz::fail(std::string("insert_segments: ") + e.what());
     if (!(Snapshot(mesh) == before))
       fz::fail(std::string("insert_segments threw '") + e.what() + "' but changed the mesh (segments" +
