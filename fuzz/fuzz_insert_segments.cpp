@@ -1,7 +1,7 @@
 // libFuzzer target: random bytes -> a small PSLG -> triangulate (carved or
-// with its convex hull, maybe with a hole) -> insert_segments with a few
-// more segments (vertex id pairs) -> deltamesh::check; then maybe
-// make_constrained_delaunay and a small refinement -> check again.
+// with its convex hull, maybe with a hole; a CDT or a Ct triangulation) ->
+// insert_segments with a few more segments (vertex id pairs) -> check;
+// then maybe make_constrained_delaunay and a small refinement -> check again.
 //
 // A bug is: a crash or sanitizer report; an exception that is not one of the
 // library's typed errors; an InputError whose message says "internal error";
@@ -149,6 +149,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
 
   dm::TriangulateOptions topt;
   topt.domain.keep_convex_hull = (f1 & 4) != 0;
+  // Ct: a constrained triangulation that need not be Delaunay, like a mesh
+  // read from files (the header allows any valid mesh).
+  const bool input_cdt = (f1 & 64) == 0;
+  if (!input_cdt) topt.method = dm::CdtMethod::Ct;
   dm::Mesh mesh;
   try {
     mesh = dm::triangulate(g, topt);
@@ -220,7 +224,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   must.points.assign(mesh.points().begin(), mesh.points().end());
   // A CDT stays one with or without the final flips (header), unless the
   // recovery is Ct, which is not always Delaunay.
-  const bool delaunay = iopt.delaunay || iopt.method != dm::CdtMethod::Ct;
+  const bool delaunay = iopt.delaunay || (input_cdt && iopt.method != dm::CdtMethod::Ct);
   check(mesh, must, delaunay, convex, before, "insert_segments");
   DELTAMESH_FUZZ_CHECK(st.segments == extra.size(), "stats.segments");
   DELTAMESH_FUZZ_CHECK(st.zero_length + st.already_present + st.inserted <= st.segments, "stats add up");
