@@ -147,6 +147,20 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   }
   if (f1 & 2) g.holes.push_back(cm.point(in));
 
+  static const bool verbose = std::getenv("DELTAMESH_FUZZ_VERBOSE") != nullptr;
+  if (verbose) {  // the PSLG as a .poly (a regression input by copying it)
+    std::fprintf(stderr, "--- input.poly:\n%zu 2 0 0\n", g.points.size());
+    for (std::size_t i = 0; i < g.points.size(); ++i)
+      std::fprintf(stderr, "%zu %.17g %.17g\n", i, g.points[i].x, g.points[i].y);
+    std::fprintf(stderr, "%zu 1\n", g.segments.size());
+    for (std::size_t i = 0; i < g.segments.size(); ++i)
+      std::fprintf(stderr, "%zu %u %u %d\n", i, static_cast<unsigned>(g.segments[i].a),
+                   static_cast<unsigned>(g.segments[i].b), g.segments[i].marker);
+    std::fprintf(stderr, "%zu\n", g.holes.size());
+    for (std::size_t i = 0; i < g.holes.size(); ++i)
+      std::fprintf(stderr, "%zu %.17g %.17g\n", i, g.holes[i].x, g.holes[i].y);
+    std::fprintf(stderr, "0\n--- end\n");
+  }
   dm::TriangulateOptions topt;
   topt.domain.keep_convex_hull = (f1 & 4) != 0;
   // Ct: a constrained triangulation that need not be Delaunay, like a mesh
@@ -194,7 +208,6 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   }
   for (const dm::Segment& s : extra) must.segments.push_back(s);
 
-  static const bool verbose = std::getenv("DELTAMESH_FUZZ_VERBOSE") != nullptr;
   if (verbose) {
     std::fprintf(stderr, "--- mesh: %zu vertices, %zu triangles; insert%s method=%s strict=%d delaunay=%d\n",
                  mesh.num_vertices(), mesh.num_triangles(), seg_list(extra).c_str(),
@@ -204,6 +217,12 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   }
 
   const Snapshot before(mesh);
+  {
+    // The input itself (triangulate is fuzz_mesh's business, but a bug there
+    // must not be blamed on insert_segments).
+    dm::Pslg none;
+    check(mesh, none, input_cdt, convex, before, "triangulate");
+  }
   dm::InsertSegmentsStats st;
   try {
     dm::insert_segments(mesh, extra, iopt, &st);
