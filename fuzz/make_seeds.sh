@@ -17,7 +17,7 @@ for b in "$gen" "$cli"; do
 done
 out=fuzz/corpus
 rm -rf "$out"
-mkdir -p "$out"/{fuzz_node,fuzz_poly,fuzz_ele,fuzz_area,fuzz_geojson,fuzz_mesh}
+mkdir -p "$out"/{fuzz_node,fuzz_poly,fuzz_ele,fuzz_area,fuzz_geojson,fuzz_mesh,fuzz_insert_segments}
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 
@@ -122,5 +122,41 @@ for i in $(seq 1 24); do
   s=""
   for _ in $(seq 1 "$len"); do s+=$(printf '\\x%02x' $((RANDOM % 256))); done
   printf "$s" | seed fuzz_mesh "random_$i.bin"
+done
+# --- fuzz_insert_segments: byte values in the order the target consumes
+# them (FuzzedDataProvider reads from the end, so they are written
+# reversed): f1 f2 coord-mode grid [scale shift bool bool] n-3 m k-1,
+# points, PSLG segments (a b marker; only a marker for the ring f1&1
+# makes), a hole point if f1&2, then the new segments (a b marker).
+seed_bytes() {  # seed_bytes NAME BYTE...
+  local name=$1 s="" i
+  shift
+  local a=("$@")
+  for ((i = ${#a[@]} - 1; i >= 0; i--)); do s+=$(printf '\\x%02x' "${a[i]}"); done
+  printf "$s" | seed fuzz_insert_segments "$name"
+}
+# square 0..4 carved by its ring, both diagonals (they cross: a new vertex)
+seed_bytes square_diagonals.bin 1 0 0 3 1 4 1  0 0 4 0 4 4 0 4  1 1 1 1  0 2 2 1 3 3
+# the same under strict: IntersectingSegments, the mesh unchanged
+seed_bytes square_diagonals_strict.bin 1 4 0 3 1 4 1  0 0 4 0 4 4 0 4  1 1 1 1  0 2 2 1 3 3
+# square with a square hole; the last new segment passes through the hole
+seed_bytes hole_through.bin 2 0 0 5 5 8 2  0 0 6 0 6 6 0 6 2 2 4 2 4 4 2 4 \
+  0 1 1 1 2 1 2 3 1 3 0 1 4 5 2 5 6 2 6 7 2 7 4 2  3 3  0 4 1 1 5 1 0 2 0
+# the same, new segments from the outer to the inner corners (Lawson, no final flips)
+seed_bytes hole_corners.bin 2 10 0 5 5 8 2  0 0 6 0 6 6 0 6 2 2 4 2 4 4 2 4 \
+  0 1 1 1 2 1 2 3 1 3 0 1 4 5 2 5 6 2 6 7 2 7 4 2  3 3  0 4 1 1 5 1 2 6 0
+# convex hull, points moved by an ulp near a diagonal; refined afterwards
+seed_bytes ulp_near_diagonal.bin 28 3 2 7 60 0 0 0 3 0 2 \
+  0 3 0 3  8 3 0 3  8 3 8 3  0 3 8 3  4 4 4 3  2 3 2 3  0 2 1 1 3 2 5 2 0
+# collinear vertices on a new segment, a zero-length one, a crossing (Ct)
+seed_bytes collinear_chain.bin 4 9 0 3 3 0 2  0 0 1 1 2 2 3 3 3 0 0 3  0 3 1 0 0 0 4 5 2
+# an endpoint out of range: SegmentError
+seed_bytes out_of_range.bin 4 0 0 3 0 0 1  0 0 4 0 0 4  0 2 0 3 1 1
+RANDOM=11
+for i in $(seq 1 12); do
+  len=$((24 + RANDOM % 120))
+  s=""
+  for _ in $(seq 1 "$len"); do s+=$(printf '\\x%02x' $((RANDOM % 256))); done
+  printf "$s" | seed fuzz_insert_segments "random_$i.bin"
 done
 echo "make_seeds: $(find "$out" -type f | wc -l) seeds, $(du -sk "$out" | cut -f1) KiB in $out"

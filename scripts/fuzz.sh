@@ -47,7 +47,7 @@ targets() {
 # lines; fuzz_mesh reads at most ~1 KB of geometry.
 max_len() {
   case "$1" in
-    fuzz_mesh) echo 1024 ;;
+    fuzz_mesh | fuzz_insert_segments) echo 1024 ;;
     fuzz_geojson) echo 8192 ;;
     *) echo 4096 ;;
   esac
