@@ -14,6 +14,7 @@
 #include "algo/cdt_builder.hpp"
 #include "deltamesh/delaunay.hpp"
 #include "deltamesh/errors.hpp"
+#include "deltamesh/predicates.hpp"
 #include "core/expansion.hpp"
 #include "deltamesh/predicates.hpp"
 
@@ -501,6 +502,38 @@ void keep_lowest_copies(Mesh& mesh, std::vector<VertexId>& kept) {
 }
 }  // namespace
 
+namespace {
+
+// Constrained Lawson flips over the real triangles. Rounded crossing vertices
+// that converge on one point can leave the fast method's cavities with an
+// edge that is not locally Delaunay (tests/regress/
+// cdt_ring_crossings_converge_not_delaunay.poly); run only when crossings
+// added vertices, so ordinary inputs pay nothing.
+void restore_constrained_delaunay(Mesh& mesh) {
+  std::vector<HalfEdgeId> stack;
+  const std::size_t halves = mesh.triangle_vertices().size();
+  for (HalfEdgeId e = 0; e < halves; ++e)
+    if (mesh.is_real(tri_of(e)) && mesh.twin(e) != kNone && e < mesh.twin(e)) stack.push_back(e);
+  while (!stack.empty()) {
+    const HalfEdgeId e = stack.back();
+    stack.pop_back();
+    const HalfEdgeId f = mesh.twin(e);
+    if (f == kNone || mesh.is_constrained(e) || !mesh.is_real(tri_of(e)) || !mesh.is_real(tri_of(f))) continue;
+    const Point& a = mesh.point(mesh.origin(e));
+    const Point& b = mesh.point(mesh.dest(e));
+    const Point& c = mesh.point(mesh.origin(prev_edge(e)));
+    const Point& d = mesh.point(mesh.origin(prev_edge(f)));
+    if (!(incircle(a, b, c, d) > 0)) continue;
+    mesh.flip(e);
+    stack.push_back(e);
+    stack.push_back(next_edge(e));
+    stack.push_back(f);
+    stack.push_back(next_edge(f));
+  }
+}
+
+}  // namespace
+
 Mesh constrained_triangulation(const Pslg& pslg, const CdtOptions& options, CdtStats* stats) {
   CdtStats local;
   CdtStats& st = stats ? *stats : local;
@@ -523,6 +556,7 @@ Mesh constrained_triangulation(const Pslg& pslg, const CdtOptions& options, CdtS
     if (detail::chain_order_cdt(mesh, pslg, options, st, first_copy)) {
       if (mesh.num_vertices() > n) claim_crossing_vertices(mesh, first_copy);
       if (st.duplicate_vertices > 0) keep_lowest_copies(mesh, first_copy);
+      if (mesh.num_vertices() > n) restore_constrained_delaunay(mesh);
       st.chain_order = true;
       st.triangulate_seconds = seconds_since(t0);
       return mesh;
@@ -558,6 +592,7 @@ Mesh constrained_triangulation(const Pslg& pslg, const CdtOptions& options, CdtS
     }
     builder.finish();
   }
+  if (options.method == CdtMethod::Fast && st.intersections > 0) restore_constrained_delaunay(mesh);
   st.segments_seconds = seconds_since(t0);
   return mesh;
 }
