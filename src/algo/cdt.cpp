@@ -502,37 +502,37 @@ void keep_lowest_copies(Mesh& mesh, std::vector<VertexId>& kept) {
 }
 }  // namespace
 
-namespace {
+namespace detail {
 
-// Constrained Lawson flips over the real triangles. Rounded crossing vertices
-// that converge on one point can leave the fast method's cavities with an
-// edge that is not locally Delaunay (tests/regress/
-// cdt_ring_crossings_converge_not_delaunay.poly); run only when crossings
-// added vertices, so ordinary inputs pay nothing.
-void restore_constrained_delaunay(Mesh& mesh) {
+std::size_t constrained_lawson_flips(Mesh& mesh) {
   std::vector<HalfEdgeId> stack;
   const std::size_t halves = mesh.triangle_vertices().size();
   for (HalfEdgeId e = 0; e < halves; ++e)
     if (mesh.is_real(tri_of(e)) && mesh.twin(e) != kNone && e < mesh.twin(e)) stack.push_back(e);
+  std::size_t flips = 0;
   while (!stack.empty()) {
     const HalfEdgeId e = stack.back();
     stack.pop_back();
     const HalfEdgeId f = mesh.twin(e);
     if (f == kNone || mesh.is_constrained(e) || !mesh.is_real(tri_of(e)) || !mesh.is_real(tri_of(f))) continue;
+    // e = a->b in (a, b, c), f = b->a in (b, a, d): d strictly inside the
+    // circle of abc also makes the quadrilateral strictly convex.
     const Point& a = mesh.point(mesh.origin(e));
     const Point& b = mesh.point(mesh.dest(e));
     const Point& c = mesh.point(mesh.origin(prev_edge(e)));
     const Point& d = mesh.point(mesh.origin(prev_edge(f)));
     if (!(incircle(a, b, c, d) > 0)) continue;
-    mesh.flip(e);
+    mesh.flip(e);  // e's slot becomes (c, a, d), f's (d, b, c)
+    ++flips;
     stack.push_back(e);
     stack.push_back(next_edge(e));
     stack.push_back(f);
     stack.push_back(next_edge(f));
   }
+  return flips;
 }
 
-}  // namespace
+}  // namespace detail
 
 Mesh constrained_triangulation(const Pslg& pslg, const CdtOptions& options, CdtStats* stats) {
   CdtStats local;
@@ -556,7 +556,11 @@ Mesh constrained_triangulation(const Pslg& pslg, const CdtOptions& options, CdtS
     if (detail::chain_order_cdt(mesh, pslg, options, st, first_copy)) {
       if (mesh.num_vertices() > n) claim_crossing_vertices(mesh, first_copy);
       if (st.duplicate_vertices > 0) keep_lowest_copies(mesh, first_copy);
-      if (mesh.num_vertices() > n) restore_constrained_delaunay(mesh);
+      // Rounded crossing vertices converging on one point can leave an edge
+      // that is not locally Delaunay (tests/regress/
+      // cdt_ring_crossings_converge_not_delaunay.poly); inputs without
+      // crossings skip this.
+      if (mesh.num_vertices() > n) detail::constrained_lawson_flips(mesh);
       st.chain_order = true;
       st.triangulate_seconds = seconds_since(t0);
       return mesh;
@@ -592,7 +596,7 @@ Mesh constrained_triangulation(const Pslg& pslg, const CdtOptions& options, CdtS
     }
     builder.finish();
   }
-  if (options.method == CdtMethod::Fast && st.intersections > 0) restore_constrained_delaunay(mesh);
+  if (options.method == CdtMethod::Fast && st.intersections > 0) detail::constrained_lawson_flips(mesh);  // as above
   st.segments_seconds = seconds_since(t0);
   return mesh;
 }

@@ -168,4 +168,9 @@ class CdtBuilder {
 bool chain_order_cdt(Mesh& mesh, const Pslg& pslg, const CdtOptions& options, CdtStats& stats,
                      std::vector<VertexId>& first_copy);
 
+// Constrained Lawson flips over the real triangles (ghosts and dead slots are
+// left alone) until every unconstrained edge is locally Delaunay. Returns the
+// number of flips.
+std::size_t constrained_lawson_flips(Mesh& mesh);
+
 }  // namespace deltamesh::detail

@@ -274,31 +274,7 @@ using Clock = std::chrono::steady_clock;
 
 std::size_t make_constrained_delaunay(Mesh& mesh) {
   if (!mesh.compacted()) mesh.compact();
-  std::vector<HalfEdgeId> stack;
-  const std::size_t halves = mesh.triangle_vertices().size();
-  for (HalfEdgeId e = 0; e < halves; ++e)
-    if (mesh.twin(e) != kNone && e < mesh.twin(e) && !mesh.is_constrained(e)) stack.push_back(e);
-  std::size_t flips = 0;
-  while (!stack.empty()) {
-    const HalfEdgeId e = stack.back();
-    stack.pop_back();
-    const HalfEdgeId f = mesh.twin(e);
-    if (f == kNone || mesh.is_constrained(e)) continue;
-    // e = a->b in (a, b, c), f = b->a in (b, a, d): d strictly inside the
-    // circle of abc also makes the quadrilateral strictly convex.
-    const Point& a = mesh.point(mesh.origin(e));
-    const Point& b = mesh.point(mesh.dest(e));
-    const Point& c = mesh.point(mesh.origin(prev_edge(e)));
-    const Point& d = mesh.point(mesh.origin(prev_edge(f)));
-    if (!(incircle(a, b, c, d) > 0)) continue;
-    mesh.flip(e);  // e's slot becomes (c, a, d), f's (d, b, c)
-    ++flips;
-    stack.push_back(e);
-    stack.push_back(next_edge(e));
-    stack.push_back(f);
-    stack.push_back(next_edge(f));
-  }
-  return flips;
+  return detail::constrained_lawson_flips(mesh);
 }
 
 void insert_segments(Mesh& mesh, std::span<const Segment> segments, const InsertSegmentsOptions& options,
