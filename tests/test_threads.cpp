@@ -215,11 +215,6 @@ TEST_F(Threads, ConcurrentMeshingEqualsSingleThreaded) {
 TEST_F(Threads, ConcurrentWritersOfOneFileLeaveAWholeFile) {
   // Several threads write the same output path: each write is atomic, so
   // whichever lands last, the file is whole, and no temporary is left.
-  GTEST_SKIP() << "bug: io::AtomicFile names its temporary '<path>.tmp.<pid>', shared by every writer of one path "
-                  "in a process: a second writer truncates the first one's file and its rename then fails "
-                  "(\"cannot rename the temporary file onto ...: No such file or directory\"), or the target gets "
-                  "mixed content (reported; the fix needs a name unique per writer, and "
-                  "TriangleIo.AtomicFileDiskFullIsIoErrorAndLeavesNothing relies on the current name)";
   const dm::Mesh m = dm::delaunay(dm::gen::uniform_points(scaled(2000), 3));
   const std::string target = path("same.node");
   dm::write_node(m, target);

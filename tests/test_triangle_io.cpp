@@ -1,10 +1,12 @@
 // Triangle's file formats: readers (accepted syntax and every error class),
 // writers (round trips, headers, markers, numbering) and the atomic writer.
 #include <gtest/gtest.h>
+#include <sys/resource.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
+#include <csignal>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -718,20 +720,39 @@ TEST_F(TriangleIo, AtomicFileMissingDirectoryIsIoError) {
   EXPECT_TRUE(listing().empty());
 }
 
-TEST_F(TriangleIo, AtomicFileDiskFullIsIoErrorAndLeavesNothing) {
-  if (!fs::exists("/dev/full")) GTEST_SKIP() << "no /dev/full";
+TEST_F(TriangleIo, AtomicFileWriteErrorIsIoErrorAndLeavesNothing) {
+  // A file size limit makes the writes fail (EFBIG) part way through, as a
+  // full disk would; the signal it raises is ignored for the test.
   const std::string p = path("full.node");
-  // The temporary name points at /dev/full, so writes fail with ENOSPC.
-  fs::create_symlink("/dev/full", p + ".tmp." + std::to_string(::getpid()));
+  rlimit old{};
+  ASSERT_EQ(::getrlimit(RLIMIT_FSIZE, &old), 0);
+  const rlimit small{4096, old.rlim_max};
+  auto* old_handler = std::signal(SIGXFSZ, SIG_IGN);
+  ASSERT_EQ(::setrlimit(RLIMIT_FSIZE, &small), 0);
+  std::string message;
   try {
     write_node(grid_mesh(40, 40), p);
-    ADD_FAILURE() << "no IoError";
   } catch (const IoError& e) {
-    EXPECT_NE(std::string(e.what()).find(p), std::string::npos) << e.what();
-    EXPECT_NE(std::string(e.what()).find("No space left on device"), std::string::npos) << e.what();
+    message = e.what();
   }
+  ::setrlimit(RLIMIT_FSIZE, &old);
+  std::signal(SIGXFSZ, old_handler);
+  EXPECT_NE(message.find(p), std::string::npos) << message;
+  EXPECT_NE(message.find("File too large"), std::string::npos) << message;
   EXPECT_TRUE(listing().empty());  // neither the target nor the temporary name
-  EXPECT_TRUE(fs::exists("/dev/full"));
+}
+
+TEST_F(TriangleIo, AtomicFileNeverWritesThroughAnExistingTemporaryName) {
+  if (!fs::exists("/dev/full")) GTEST_SKIP() << "no /dev/full";
+  // Someone else's file (here a link to /dev/full) at the first temporary
+  // name is left alone: the writer takes the next name and succeeds.
+  const std::string p = path("taken.node");
+  const std::string first = p + ".tmp." + std::to_string(::getpid()) + ".0";
+  fs::create_symlink("/dev/full", first);
+  write_node(grid_mesh(40, 40), p);
+  EXPECT_EQ(read_node(p).points.size(), 41u * 41u);
+  EXPECT_TRUE(fs::is_symlink(first));
+  EXPECT_EQ(listing(), (std::vector<std::string>{"taken.node", fs::path(first).filename().string()}));
 }
 
 // ---------------------------------------------------------------------------

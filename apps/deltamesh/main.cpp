@@ -363,14 +363,8 @@ class Run {
       dm::carve_mesh(mesh, seeds, dopt, &stats.domain);
       if (stats.domain.triangles_removed) dm::finish_vertex_markers(mesh);
       phase("holes, regions", t);
-      if (stats.domain.holes_ignored)
-        stats.warnings.push_back(plural(stats.domain.holes_ignored, "hole point", "hole points") +
-                                 " ignored (on a vertex or on a segment)");
-      if (stats.domain.regions_ignored)
-        stats.warnings.push_back(plural(stats.domain.regions_ignored, "region point", "region points") +
-                                 " ignored (outside the mesh, on a vertex or on a segment)");
-      if (mesh.num_triangles() == 0)
-        stats.warnings.push_back("every triangle was removed: a hole point reaches everything");
+      for (std::string& w : dm::domain_warnings(stats.domain, mesh.num_triangles(), true))
+        stats.warnings.push_back(std::move(w));
     }
     if (opt_.convex_hull) {
       // With -r, -c makes the mesh boundary (holes included) into segments.

@@ -73,6 +73,13 @@ void carve_domain(Mesh& mesh, const Pslg& pslg, const DomainOptions& options = {
 // were removed. Points are located by one pass over the triangles.
 void carve_mesh(Mesh& mesh, const Pslg& pslg, const DomainOptions& options = {}, DomainStats* stats = nullptr);
 
+// The warnings a user gets about a carve: hole points and region seeds that
+// were ignored, and an empty result. `existing_mesh` words them for
+// carve_mesh (a mesh read back, where hole points outside it are expected);
+// otherwise for carve_domain. One place, so the CLI and triangulate() agree.
+std::vector<std::string> domain_warnings(const DomainStats& stats, std::size_t triangles_left,
+                                         bool existing_mesh = false);
+
 // The invariant carving leaves: every boundary edge of the (compacted) mesh
 // is a segment, since removal stops only at segments and -c makes the hull
 // edges segments. Returns the problems found (empty: fine), at most

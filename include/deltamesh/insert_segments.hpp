@@ -66,7 +66,9 @@ struct InsertSegmentsStats {
 // notch of the boundary, beyond the hull); nothing is changed then.
 // Throws InputError when the mesh's boundary touches or crosses itself
 // (a vertex on a boundary edge, overlapping triangles), which a valid
-// mesh's does not, and IntersectingSegments / SegmentError under strict.
+// mesh's does not, and when crossings rounded onto each other would add
+// more vertices than there are segment pairs (numerically hopeless input);
+// IntersectingSegments / SegmentError under strict. Nothing is changed then.
 //
 // Vertex ids of the mesh do not change; new ones are appended, with
 // attributes interpolated along the segment they split. Ends with

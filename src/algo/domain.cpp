@@ -424,4 +424,23 @@ std::vector<std::string> check_domain_boundary(const Mesh& mesh, std::size_t max
   return problems;
 }
 
+std::vector<std::string> domain_warnings(const DomainStats& stats, std::size_t triangles_left, bool existing_mesh) {
+  auto count_of = [](std::size_t n, const char* one, const char* many) {
+    return std::to_string(n) + " " + (n == 1 ? one : many);
+  };
+  std::vector<std::string> out;
+  if (stats.holes_ignored)
+    out.push_back(count_of(stats.holes_ignored, "hole point", "hole points") +
+                  (existing_mesh ? " ignored (on a vertex or on a segment)"
+                                 : " ignored (outside the convex hull, on a vertex or on a segment)"));
+  if (stats.regions_ignored)
+    out.push_back(count_of(stats.regions_ignored, "region point", "region points") +
+                  " ignored (outside the domain, on a vertex or on a segment)");
+  if (triangles_left == 0)
+    out.push_back(existing_mesh ? "every triangle was removed: a hole point reaches everything"
+                                : "every triangle was removed: the domain is empty (a hole point or the exterior "
+                                  "reaches everything; are the segments closed around the region, or is -c needed?)");
+  return out;
+}
+
 }  // namespace deltamesh

@@ -356,6 +356,7 @@ class Refiner {
   Decision decision_;
 
   std::size_t appended_ = 0;  // triangles appended without Mesh::add_triangle
+  void count_appended();     // adds them to the mesh's count
   Clock::time_point start_;
   std::size_t iterations_ = 0;
   int requeues_ = 0;
@@ -1657,6 +1658,12 @@ bool Refiner::budget_left() {
 
 void Refiner::run() {
   start_ = Clock::now();
+  // When a sizing callback throws, the exception leaves run() between two
+  // insertions: the triangles are whole, only their count lags behind.
+  struct CountAppended {
+    Refiner& r;
+    ~CountAppended() { r.count_appended(); }
+  } count_on_exit{*this};
   setup();
   const std::size_t nt = tv_.size() / 3;
   for (HalfEdgeId e = 0; e < tv_.size(); ++e)
@@ -1729,9 +1736,13 @@ void Refiner::run() {
   finish();
 }
 
-void Refiner::finish() {
+void Refiner::count_appended() {
   m_.set_live_real(m_.live_real() + appended_);
   appended_ = 0;
+}
+
+void Refiner::finish() {
+  count_appended();
   const bool stopped = st_.budget_exhausted || st_.time_exhausted;
   // Classify what is left by the reason recorded when each triangle was
   // last left alone (linear: no decision is repeated here). A bad triangle

@@ -230,16 +230,7 @@ Mesh triangulate(const Pslg& pslg, const TriangulateOptions& options, Triangulat
     if (st.cdt.zero_length_segments)
       st.warnings.push_back(count_of(st.cdt.zero_length_segments, "zero-length segment", "zero-length segments") +
                             " ignored (both ends at the same point)");
-    if (st.domain.holes_ignored)
-      st.warnings.push_back(count_of(st.domain.holes_ignored, "hole point", "hole points") +
-                            " ignored (outside the convex hull, on a vertex or on a segment)");
-    if (st.domain.regions_ignored)
-      st.warnings.push_back(count_of(st.domain.regions_ignored, "region point", "region points") +
-                            " ignored (outside the domain, on a vertex or on a segment)");
-    if (mesh.num_triangles() == 0)
-      st.warnings.push_back(
-          "every triangle was removed: the domain is empty (a hole point or the exterior reaches everything; "
-          "are the segments closed around the region, or is -c needed?)");
+    for (std::string& w : domain_warnings(st.domain, mesh.num_triangles())) st.warnings.push_back(std::move(w));
   }
 
   // Refinement works on the carved mesh; vertices it adds get their markers

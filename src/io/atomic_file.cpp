@@ -11,14 +11,22 @@
 
 namespace deltamesh::io {
 
-AtomicFile::AtomicFile(std::string path)
-    : path_(std::move(path)), temp_(path_ + ".tmp." + std::to_string(::getpid())) {
-  fd_ = ::open(temp_.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
-  if (fd_ < 0) {
-    const int err = errno;
-    throw IoError("cannot create '" + path_ + "' (temporary file '" + temp_ + "'): " +
-                  std::generic_category().message(err));
+AtomicFile::AtomicFile(std::string path) : path_(std::move(path)) {
+  // O_EXCL makes the name this writer's own: other threads of this process
+  // writing the same path at once take the next free number.
+  const std::string stem = path_ + ".tmp." + std::to_string(::getpid()) + ".";
+  int err = 0;
+  for (int k = 0; k < kMaxTempAttempts; ++k) {
+    temp_ = stem + std::to_string(k);
+    fd_ = ::open(temp_.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+    if (fd_ >= 0) return;
+    err = errno;
+    if (err != EEXIST) break;
   }
+  const std::string temp = temp_;
+  temp_.clear();  // not ours: the destructor must not remove it
+  throw IoError("cannot create '" + path_ + "' (temporary file '" + temp + "'): " +
+                std::generic_category().message(err));
 }
 
 AtomicFile::~AtomicFile() {

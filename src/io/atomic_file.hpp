@@ -1,7 +1,9 @@
 // Output files that appear whole or not at all.
 //
-// AtomicFile writes to `<path>.tmp.<pid>` in the same directory and renames
-// it onto `path` on commit(). An AtomicFile destroyed without commit() (an
+// AtomicFile writes to `<path>.tmp.<pid>.<k>` in the same directory (the
+// first k whose file does not exist yet, created exclusively, so concurrent
+// writers of one path never share a temporary) and renames it onto `path` on
+// commit(); the last rename wins, and the file is always one writer's whole. An AtomicFile destroyed without commit() (an
 // exception on the way) removes its temporary file, so a failed write never
 // leaves a partial output file behind. Errors throw IoError naming the path
 // and the system's reason.
@@ -27,6 +29,7 @@ class AtomicFile {
   const std::string& temp_path() const { return temp_; }
 
  private:
+  static constexpr int kMaxTempAttempts = 1000;
   [[noreturn]] void fail(const std::string& doing, int err);
   void discard() noexcept;
 
