@@ -44,6 +44,14 @@ class Coarsener {
     refused_.assign(n, 0);
     for (VertexId v = 0; v < n; ++v)
       if (m_.out_edge(v) != kNone) ++st_.vertices_before;
+    // A vertex where the boundary touches itself has several fans (one
+    // boundary out-edge each); a rotation sees one, so it stays. Removals
+    // keep the domain, so no new such vertex appears.
+    std::vector<std::uint8_t> fans(n, 0);
+    for (HalfEdgeId e = 0; e < m_.triangle_vertices().size(); ++e)
+      if (m_.twin(e) == kNone && fans[m_.origin(e)] < 2) ++fans[m_.origin(e)];
+    for (VertexId v = 0; v < n; ++v)
+      if (fans[v] > 1) refused_[v] = 1;
     for (VertexId v = 0; v < n; ++v) consider(v);
     while (!heap_.empty()) {
       if (opt_.max_removals && st_.removed >= opt_.max_removals) break;
