@@ -25,11 +25,11 @@ using SizeField = std::function<double(double x, double y)>;
 // A size field given by sizes at the vertices of a background mesh (one per
 // vertex, e.g. the sizes of a TetGen .mtr file): linear interpolation over
 // the background triangle containing the point, found by a walk from the
-// last triangle found; a point outside the background mesh (or behind a
-// hole the walk cannot cross) takes the size of the nearest background
-// vertex. The background mesh is copied; the function is safe to call from
-// several threads (its walk-start cache is atomic). Throws InputError unless
-// there is one positive finite size per vertex.
+// nearest background vertex (a bucket grid); a point outside the background
+// mesh (or behind a hole the walk cannot cross) takes the size of the
+// nearest background vertex. The background mesh is copied; the function
+// has no mutable state, so it may be called from several threads. Throws
+// InputError unless there is one positive finite size per vertex.
 SizeField size_field_from_vertices(const Mesh& background, std::span<const double> sizes);
 
 struct CoarsenOptions {

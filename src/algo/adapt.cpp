@@ -2,7 +2,6 @@
 #include "deltamesh/adapt.hpp"
 
 #include <algorithm>
-#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -42,6 +41,7 @@ class Coarsener {
     stamp_.assign(n, 0);
     mark_.assign(n, 0);
     refused_.assign(n, 0);
+    h_at_.assign(n, NAN);
     for (VertexId v = 0; v < n; ++v)
       if (m_.out_edge(v) != kNone) ++st_.vertices_before;
     // A vertex where the boundary touches itself has several fans (one
@@ -136,7 +136,8 @@ class Coarsener {
     const Star s = star(v);
     if (s.kind == Kind::None) return;
     const Point& p = pt(v);
-    const double h = h_(p.x, p.y);
+    if (std::isnan(h_at_[v])) h_at_[v] = h_(p.x, p.y);  // vertices do not move: one call each
+    const double h = h_at_[v];
     if (!(h > 0) || !std::isfinite(h)) return;
     double lo = INFINITY, hi = 0;
     for (VertexId w : s.nbr) {
@@ -309,6 +310,7 @@ class Coarsener {
   std::priority_queue<Entry> heap_;
   std::vector<std::uint32_t> stamp_;
   std::vector<std::uint8_t> mark_, refused_;
+  std::vector<double> h_at_;
   std::vector<VertexId> touched_;
   std::vector<HalfEdgeId> stack_, spokes_;
 };
@@ -329,18 +331,15 @@ class BackgroundField {
 
   double operator()(double x, double y) const {
     const Point p{x, y};
-    if (m_.num_triangles() == 0) return nearest_size(p);
-    TriId start = last_.load(std::memory_order_relaxed);
-    Location loc = m_.locate(p, start);
-    if (loc.kind == Location::Kind::Outside || loc.tri == kNone) {
-      // Blocked by the boundary (a hole may be in the way): try again from
-      // beside the nearest vertex, else take its size.
-      const VertexId v = nearest(p);
-      if (v == kNone) return -1.0;
-      loc = m_.locate(p, tri_of(m_.out_edge(v)));
-      if (loc.kind == Location::Kind::Outside || loc.tri == kNone) return sizes_[v];
-    }
-    last_.store(loc.tri, std::memory_order_relaxed);
+    // The walk starts beside the nearest vertex (a grid look-up), so it is
+    // a few steps whatever the order of the queries.
+    const VertexId v = nearest(p);
+    if (v == kNone) return -1.0;
+    if (m_.num_triangles() == 0) return sizes_[v];
+    const Location loc = m_.locate(p, tri_of(m_.out_edge(v)));
+    // Outside the mesh (or behind a hole the walk cannot cross): the
+    // nearest vertex's size.
+    if (loc.kind == Location::Kind::Outside || loc.tri == kNone) return sizes_[v];
     const auto t = m_.triangle(loc.tri);
     const Point &a = m_.point(t[0]), &b = m_.point(t[1]), &c = m_.point(t[2]);
     const double area = (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
@@ -353,11 +352,6 @@ class BackgroundField {
   }
 
  private:
-  double nearest_size(const Point& p) const {
-    const VertexId v = nearest(p);
-    return v == kNone ? -1.0 : sizes_[v];
-  }
-
   void build_grid() {
     std::vector<VertexId> used;
     for (VertexId v = 0; v < m_.num_vertices(); ++v)
@@ -425,7 +419,6 @@ class BackgroundField {
 
   Mesh m_;
   std::vector<double> sizes_;
-  mutable std::atomic<TriId> last_{kNone};
   Point lo_{0, 0}, hi_{0, 0};
   double cell_ = 1.0;
   std::size_t nx_ = 0, ny_ = 0;
