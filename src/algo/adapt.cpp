@@ -336,9 +336,14 @@ class BackgroundField {
     const VertexId v = nearest(p);
     if (v == kNone) return -1.0;
     if (m_.num_triangles() == 0) return sizes_[v];
-    const Location loc = m_.locate(p, tri_of(m_.out_edge(v)));
-    // Outside the mesh (or behind a hole the walk cannot cross): the
-    // nearest vertex's size.
+    // A walk may stop at a hole between its start and p: start from each
+    // triangle around v in turn. Outside the mesh (or behind a hole from all
+    // of them): the nearest vertex's size.
+    Location loc;
+    m_.for_each_out_edge(v, [&](HalfEdgeId e) {
+      loc = m_.locate(p, tri_of(e));
+      return loc.kind == Location::Kind::Outside || loc.tri == kNone;
+    });
     if (loc.kind == Location::Kind::Outside || loc.tri == kNone) return sizes_[v];
     const auto t = m_.triangle(loc.tri);
     const Point &a = m_.point(t[0]), &b = m_.point(t[1]), &c = m_.point(t[2]);
