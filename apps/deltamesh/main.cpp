@@ -95,6 +95,8 @@ class Run {
     dm::TriangulateStats stats;
     if (opt_.refine) {
       mesh = read_mesh(in, stats);
+      read_vertices_ = mesh.num_vertices();
+      read_triangles_ = mesh.num_triangles();
       if (!opt_.quiet)
         for (const std::string& w : stats.warnings) std::fprintf(stderr, "deltamesh: warning: %s\n", w.c_str());
       if (opt_.adapt) {
@@ -496,7 +498,7 @@ class Run {
       }
     }
     if (opt_.refine) {
-      std::printf("Mesh read: %zu vertices, %zu triangles", mesh.num_vertices(), mesh.num_triangles());
+      std::printf("Mesh read: %zu vertices, %zu triangles", read_vertices_, read_triangles_);
       if (opt_.poly) {
         std::printf("; %s (%zu already edges, %zu inserted, %s added)",
                     plural(inserted_.segments, "segment", "segments").c_str(), inserted_.already_present,
@@ -527,6 +529,7 @@ class Run {
                          : (" (" + std::to_string(refine_stats_.too_large_precision) + " at the precision of doubles)")
                                .c_str());
     }
+    if (adapted_) std::printf("Adapted: %s\n", adapt_stats_.summary().c_str());
     for (const std::string& w : written) std::printf("  wrote %s\n", w.c_str());
     if (!check_summary_.empty()) std::printf("Check: %s\n", check_summary_.c_str());
     if (opt_.verbose > 0) {
@@ -627,6 +630,7 @@ class Run {
   dm::GeoJsonInfo geojson_info_;
   bool refined_ = false;
   bool adapted_ = false;           // --adapt
+  std::size_t read_vertices_ = 0, read_triangles_ = 0;  // -r: the mesh as read
   dm::AdaptStats adapt_stats_;
   std::vector<double> sizes_;      // --adapt: FILE.mtr
   dm::RefineStats refine_stats_;
