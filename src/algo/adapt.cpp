@@ -157,9 +157,9 @@ class Coarsener {
     heap_.push({lo / h, v, stamp_[v]});
   }
 
-  // Flips out-edge e = v->w of the star away when the quadrilateral is
-  // strictly convex; returns the power of v with respect to the circle of
-  // the ear (y, w, x) it cuts off, or NaN when the flip is not valid.
+  // Spoke e = v->w can be flipped when its quadrilateral is strictly convex;
+  // then returns the power of v with respect to the circle of the ear
+  // (y, w, x) the flip cuts off the star, else NaN.
   double ear_power(HalfEdgeId e) const {
     const HalfEdgeId f = m_.twin(e);
     if (f == kNone || m_.is_constrained(e)) return NAN;
@@ -232,6 +232,13 @@ class Coarsener {
   void remove(VertexId v) {
     const Star s = star(v);
     if (s.kind == Kind::None) return;
+    // On the boundary, out_edge(v) is the most clockwise spoke (compact()
+    // sets it; flips and the removals keep it).
+    if (s.boundary && m_.twin(m_.out_edge(v)) != kNone) {
+      refused_[v] = 1;
+      ++st_.refused;
+      return;
+    }
     touched_.clear();
     for (VertexId w : s.nbr) touch(w);
     bool ok = false;
@@ -242,9 +249,7 @@ class Coarsener {
       // g = v->b; on the boundary b is the most clockwise neighbour.
       VertexId a = s.a, b = s.b;
       if (s.boundary) {
-        const HalfEdgeId first = m_.out_edge(v);
-        if (m_.twin(first) != kNone) return;
-        b = m_.dest(first);
+        b = m_.dest(m_.out_edge(v));
         a = b == s.a ? s.b : s.a;
       }
       ok = reduce(v, b, a, 1) && (s.boundary || reduce(v, a, b, 1));
