@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -239,6 +240,68 @@ TEST(SizeField, InterpolatesVertexSizesLinearly) {
   EXPECT_THROW(dm::size_field_from_vertices(bg, sizes), dm::InputError);
   sizes.push_back(0.0);
   EXPECT_THROW(dm::size_field_from_vertices(bg, sizes), dm::InputError);
+}
+
+// The two topology primitives coarsening uses undo split_triangle and
+// split_edge exactly: the same triangles, twins, flags and markers.
+std::vector<std::array<dm::VertexId, 3>> triangles_of(const dm::Mesh& m) {
+  std::vector<std::array<dm::VertexId, 3>> t;
+  for (dm::TriId i = 0; i < m.num_triangle_slots(); ++i) {
+    if (!m.is_real(i)) continue;
+    auto v = m.triangle(i);
+    std::rotate(v.begin(), std::min_element(v.begin(), v.end()), v.end());
+    t.push_back(v);
+  }
+  std::sort(t.begin(), t.end());
+  return t;
+}
+std::vector<std::array<int, 3>> constrained_of(const dm::Mesh& m) {
+  std::vector<std::array<int, 3>> c;
+  for (dm::HalfEdgeId e = 0; e < m.triangle_vertices().size(); ++e)
+    if (m.is_real(dm::tri_of(e)) && m.is_constrained(e))
+      c.push_back({int(m.origin(e)), int(m.dest(e)), m.edge_marker(e)});
+  std::sort(c.begin(), c.end());
+  return c;
+}
+void expect_topology(const dm::Mesh& m) {
+  dm::CheckOptions co;
+  co.delaunay = false;
+  const dm::CheckReport rep = dm::check(m, co);
+  EXPECT_TRUE(rep.ok()) << rep.summary();
+}
+
+TEST(MeshPrimitives, RemoveDegree3VertexAndUnsplitEdgeUndoSplits) {
+  dm::Mesh m = dm::test::convex_domain({{0, 0}, {4, 0}, {4, 3}, {0, 3}, {1.5, 1.2}, {2.6, 1.9}}, 7);
+  const auto tris = triangles_of(m);
+  const auto cons = constrained_of(m);
+  ASSERT_EQ(cons.size(), 4u);
+  for (dm::TriId t = 0; t < m.num_triangle_slots(); ++t) {
+    dm::Mesh s = m;
+    const auto v = s.triangle(t);
+    const dm::Point c{(s.point(v[0]).x + s.point(v[1]).x + s.point(v[2]).x) / 3,
+                      (s.point(v[0]).y + s.point(v[1]).y + s.point(v[2]).y) / 3};
+    const dm::VertexId p = s.add_vertex(c);
+    s.split_triangle(t, p);
+    expect_topology(s);
+    s.remove_degree3_vertex(p);
+    expect_topology(s);
+    EXPECT_EQ(triangles_of(s), tris);
+    EXPECT_EQ(constrained_of(s), cons);
+    EXPECT_EQ(s.out_edge(p), dm::kNone);
+  }
+  // Every edge, boundary (one side) and interior (two sides), at its midpoint.
+  for (dm::HalfEdgeId e = 0; e < m.triangle_vertices().size(); ++e) {
+    dm::Mesh s = m;
+    const dm::Point &a = s.point(s.origin(e)), &b = s.point(s.dest(e));
+    const dm::VertexId p = s.add_vertex({(a.x + b.x) / 2, (a.y + b.y) / 2});
+    const dm::HalfEdgeId g = s.split_edge(e, p);  // p -> dest(e)
+    expect_topology(s);
+    s.unsplit_edge(g);
+    expect_topology(s);
+    EXPECT_EQ(triangles_of(s), tris) << e;
+    EXPECT_EQ(constrained_of(s), cons) << e;
+    EXPECT_EQ(s.out_edge(p), dm::kNone);
+  }
 }
 
 // ---- the command line: deltamesh -rq30 --adapt FILE.1 with FILE.1.mtr ----
