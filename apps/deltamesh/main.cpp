@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "deltamesh/adapt.hpp"
 #include "deltamesh/deltamesh.hpp"
 #include "deltamesh/formats.hpp"
 #include "deltamesh/insert_segments.hpp"
@@ -94,9 +95,27 @@ class Run {
     dm::TriangulateStats stats;
     if (opt_.refine) {
       mesh = read_mesh(in, stats);
+      read_vertices_ = mesh.num_vertices();
+      read_triangles_ = mesh.num_triangles();
       if (!opt_.quiet)
         for (const std::string& w : stats.warnings) std::fprintf(stderr, "deltamesh: warning: %s\n", w.c_str());
-      if (refining()) {
+      if (opt_.adapt) {
+        // Sizes at the vertices of the mesh as read (vertices added by -p's
+        // segment insertion take the mean of their neighbours'), then the
+        // CDT flips refinement needs, coarsening and refinement to them.
+        auto t = Clock::now();
+        const dm::SizeField h = dm::size_field_from_vertices(mesh, vertex_sizes(mesh));
+        delaunay_flips_ = dm::make_constrained_delaunay(mesh);
+        dm::AdaptOptions aopt;
+        aopt.refine = refine_options();
+        aopt.refine.progress = progress_callback();
+        adapt_stats_ = dm::adapt(mesh, h, aopt);
+        progress_.clear();
+        refine_stats_ = adapt_stats_.refine;
+        dm::finish_vertex_markers(mesh);
+        refined_ = adapted_ = true;
+        phase("adapt (coarsen + refine)", t);
+      } else if (refining()) {
         // Refinement needs a constrained Delaunay triangulation; a mesh from
         // another tool need not be one (on a CDT this flips nothing).
         auto t = Clock::now();
@@ -300,6 +319,17 @@ class Run {
     }
     input_path_ = ele_path;
     dm::EleData ele = dm::read_ele(ele_path, nodes.first_index);
+    if (opt_.adapt) {
+      const std::string mtr_path = in + ".mtr";
+      require_file(mtr_path);
+      input_path_ = mtr_path;
+      sizes_ = dm::read_mtr(mtr_path);
+      if (sizes_.size() != nodes.points.size())
+        throw dm::InputError("has " + std::to_string(sizes_.size()) + " sizes but " + node_path + " has " +
+                             std::to_string(nodes.points.size()) + " nodes");
+      if (!ele.midside.empty())
+        throw dm::InputError("--adapt needs a 3-node mesh; " + ele_path + " has 6-node triangles");
+    }
     // -ra: per-triangle bounds (one per triangle of FILE.ele, <= 0: none),
     // set before segments are inserted so they stay with their triangles.
     std::vector<double> bounds;
@@ -374,6 +404,28 @@ class Run {
     return mesh;
   }
 
+  // One size per mesh vertex: the .mtr's, and for vertices appended since
+  // (segment crossings of -r -p) the mean of their neighbours' sizes.
+  std::vector<double> vertex_sizes(const dm::Mesh& mesh) const {
+    std::vector<double> sizes = sizes_;
+    const std::size_t n = sizes.size();
+    double mean = 0;
+    for (double h : sizes_) mean += h / double(std::max<std::size_t>(n, 1));
+    for (dm::VertexId v = static_cast<dm::VertexId>(n); v < mesh.num_vertices(); ++v) {
+      double sum = 0;
+      std::size_t k = 0;
+      mesh.for_each_out_edge(v, [&](dm::HalfEdgeId e) {
+        if (mesh.dest(e) < n) {
+          sum += sizes_[mesh.dest(e)];
+          ++k;
+        }
+        return true;
+      });
+      sizes.push_back(k ? sum / double(k) : mean);
+    }
+    return sizes;
+  }
+
   // The 1-based line of segment `index` in a .poly file (0 when it cannot be
   // found): data lines are those with something before any '#'.
   static std::size_t poly_segment_line(const std::string& path, std::size_t index) {
@@ -440,7 +492,7 @@ class Run {
       }
     }
     if (opt_.refine) {
-      std::printf("Mesh read: %zu vertices, %zu triangles", mesh.num_vertices(), mesh.num_triangles());
+      std::printf("Mesh read: %zu vertices, %zu triangles", read_vertices_, read_triangles_);
       if (opt_.poly) {
         std::printf("; %s (%zu already edges, %zu inserted, %s added)",
                     plural(inserted_.segments, "segment", "segments").c_str(), inserted_.already_present,
@@ -458,6 +510,7 @@ class Run {
       if (st.duplicate_vertices) std::printf(" (%zu duplicates merged)", st.duplicate_vertices);
       std::printf(", %zu triangles, %zu hull edges\n", mesh.num_triangles(), boundary);
     }
+    if (adapted_) std::printf("Coarsened: %s\n", adapt_stats_.coarsen.summary().c_str());
     if (refined_) {
       std::printf("Quality mesh: %s\n", refine_stats_.summary().c_str());
       if (refine_stats_.budget_exhausted || refine_stats_.time_exhausted)
@@ -470,6 +523,7 @@ class Run {
                          : (" (" + std::to_string(refine_stats_.too_large_precision) + " at the precision of doubles)")
                                .c_str());
     }
+    if (adapted_) std::printf("Adapted: %s\n", adapt_stats_.summary().c_str());
     for (const std::string& w : written) std::printf("  wrote %s\n", w.c_str());
     if (!check_summary_.empty()) std::printf("Check: %s\n", check_summary_.c_str());
     if (opt_.verbose > 0) {
@@ -569,6 +623,10 @@ class Run {
   bool poly_ = false;     // segments are meshed: -p or a GeoJSON input
   dm::GeoJsonInfo geojson_info_;
   bool refined_ = false;
+  bool adapted_ = false;           // --adapt
+  std::size_t read_vertices_ = 0, read_triangles_ = 0;  // -r: the mesh as read
+  dm::AdaptStats adapt_stats_;
+  std::vector<double> sizes_;      // --adapt: FILE.mtr
   dm::RefineStats refine_stats_;
   std::vector<Phase> phases_;
   int first_index_ = 0;

@@ -250,6 +250,7 @@ Options parse_arguments(const std::vector<std::string>& args) {
         else if (name == "--voronoi-overlay") o.voronoi_overlay = true;
         else if (name == "--poly") o.poly = true;
         else if (name == "--refine") o.refine = true;
+        else if (name == "--adapt") { o.adapt = true; o.refine = true; }
         else if (name == "--quality") o.quality = true;
         else if (name == "--regional-area") { o.area = true; o.area_from_regions = true; }
         else if (name == "--user-area") { o.user_area = true; o.unavailable.push_back("--user-area (-u: user size function: the C++ API's RefineOptions::max_area_at)"); }
@@ -297,6 +298,9 @@ Input:
       segments are inserted where they are not edges yet, its holes carved)
       and refine it (with -q/-a; -a without a number reads the per-triangle
       bounds of FILE.area) into the next iteration
+  --adapt  (implies -r) adapt the mesh to the target edge lengths of FILE.mtr
+      (TetGen's format: '<#nodes> 1', then one size per node): coarsen where
+      edges are shorter than the size, refine where longer (with -q: quality)
 Quality meshing:
   -q[ANGLE]  (--quality, --min-angle=ANGLE) quality mesh: no angle below ANGLE degrees (default 20), except
       in input angles under 60 degrees; up to ~34 in practice

@@ -25,6 +25,7 @@ struct Options {
   // Triangle switches that work.
   bool poly = false;                 // -p  read FILE.poly (segments, holes, regions)
   bool refine = false;               // -r  read a mesh: FILE.node + FILE.ele (rebuilt, not refined yet)
+  bool adapt = false;                // --adapt (implies -r): coarsen and refine to FILE.mtr's per-vertex sizes
   bool convex_hull = false;          // -c
   bool regional_attributes = false;  // -A
   bool ignore_holes = false;         // -O

@@ -1,5 +1,6 @@
 // Everything in the public API.
 #pragma once
+#include "deltamesh/adapt.hpp"
 #include "deltamesh/cdt.hpp"
 #include "deltamesh/delaunay.hpp"
 #include "deltamesh/domain.hpp"

@@ -135,6 +135,16 @@ class Mesh {
   // Splits the edge of half-edge e at new vertex p (both sides when it has a
   // twin). Returns the half-edge p -> dest(e).
   HalfEdgeId split_edge(HalfEdgeId e, VertexId p);
+  // Inverse of split_triangle: removes v, which has exactly three triangles
+  // (v,a,b), (v,b,c), (v,c,a) and is in no other; (a,b,c) takes the slot of
+  // the triangle of v's out-edge and the outer edges keep their twins,
+  // flags and markers. The caller guarantees (a,b,c) is counter-clockwise.
+  void remove_degree3_vertex(VertexId v);
+  // Inverse of split_edge: g = v->b lies in (v,b,c), and v's only other
+  // triangles are (v,c,a) and, when g has a twin, (b,v,d) and (v,d,a).
+  // They become (a,b,c) and (b,a,d); edge a-b takes the flags and marker of
+  // a->v. The caller guarantees a, v, b are collinear with v between.
+  void unsplit_edge(HalfEdgeId g);
 
   // Exact point location by a visibility walk from triangle `start` (any live
   // triangle when kNone). Needs ghost triangles (a closed triangulation).

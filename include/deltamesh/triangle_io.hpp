@@ -31,6 +31,10 @@ struct EleData {
 EleData read_ele(const std::string& path, int first_index);
 // Per-triangle area bounds of an .area file (negative: no bound).
 std::vector<double> read_area(const std::string& path);
+// Per-vertex target sizes of a TetGen .mtr file: a header '<#nodes> 1'
+// (the second number, the sizes per node, must be 1 when given), then one
+// positive size per line in node order, '#' comments allowed.
+std::vector<double> read_mtr(const std::string& path);
 
 struct TriangleWriteOptions {
   int first_index = 0;        // numbering written (Triangle: the input's; -z forces 0)

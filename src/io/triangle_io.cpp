@@ -520,6 +520,33 @@ std::vector<double> read_area(const std::string& path) {
   return areas;
 }
 
+std::vector<double> read_mtr(const std::string& path) {
+  TextReader r = TextReader::open(path);
+  if (!r.next_line())
+    r.fail_at(r.last_line(), "expected the header line '<#nodes> 1', but the file holds no data");
+  const std::size_t header_line = r.line();
+  const long long nv = read_count(r, 0, "node count");
+  if (r.size() > 1) {
+    const long long k = r.integer(1, [] { return std::string("the number of sizes per node"); });
+    if (k != 1) r.fail("the number of sizes per node is " + str(k) + "; only 1 (an isotropic size) is supported");
+  }
+  check_count_fits(r, nv, 1, "nodes");
+  std::vector<double> sizes;
+  sizes.reserve(static_cast<std::size_t>(nv));
+  for (long long i = 0; i < nv; ++i) {
+    next_entry(r, i, nv, header_line, "node sizes");
+    const std::string which = "size " + str(i + 1) + " of " + str(nv);
+    if (r.size() != 1)
+      r.fail("expected one size per line (" + which + "), found " + str(static_cast<long long>(r.size())) + " fields");
+    const double h = r.finite_number(0, [&] { return which; });
+    if (!(h > 0)) r.fail(which + " is " + std::string(r.token(0)) + "; sizes must be positive");
+    sizes.push_back(h);
+  }
+  reject_trailing_data(r, "the " + plural(nv, "node size", "node sizes") + " announced on line " +
+                              std::to_string(header_line));
+  return sizes;
+}
+
 // ---------------------------------------------------------------------------
 // Writers
 

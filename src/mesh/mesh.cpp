@@ -257,6 +257,104 @@ HalfEdgeId Mesh::split_edge(HalfEdgeId e, VertexId p) {
   return g0;
 }
 
+void Mesh::remove_degree3_vertex(VertexId v) {
+  // e = v->a in (v,a,b); g = v->b in (v,b,c); h = v->c in (v,c,a).
+  const HalfEdgeId e0 = vert_edge_[v], e1 = next_edge(e0), e2 = prev_edge(e0);
+  const HalfEdgeId g0 = twin_[e2], g1 = next_edge(g0), g2 = prev_edge(g0);
+  const HalfEdgeId h0 = twin_[g2], h1 = next_edge(h0);
+  assert(g0 != kNone && h0 != kNone && twin_[prev_edge(h0)] == e0);
+  const VertexId a = tri_v_[e1], b = tri_v_[e2], c = tri_v_[g2];
+  const HalfEdgeId h2 = prev_edge(h0);
+  const HalfEdgeId tw_ca = twin_[h1], tw_bc = twin_[g1];
+  const std::uint8_t fl_ca = edge_flags(h1), fl_bc = edge_flags(g1);
+  const int m_ca = edge_marker(h1), m_bc = edge_marker(g1);
+  const TriId t0 = tri_of(e0);
+  remove_triangle(tri_of(g0));
+  remove_triangle(tri_of(h0));
+  note_removed(t0);
+  tri_v_[e0] = c;  // (c, a, b)
+  note_added(t0);
+  auto relink = [&](HalfEdgeId x, HalfEdgeId y) {
+    twin_[x] = y;
+    if (y != kNone) twin_[y] = x;
+  };
+  relink(e0, tw_ca);
+  relink(e2, tw_bc);
+  if (!edge_flags_.empty()) {
+    edge_flags_[e0] = fl_ca;
+    edge_flags_[e2] = fl_bc;
+  }
+  if (!edge_markers_.empty()) {
+    edge_markers_[e0] = m_ca;
+    edge_markers_[e2] = m_bc;
+  }
+  vert_edge_[v] = kNone;
+  if (a != kInfinite && vert_edge_[a] == h2) vert_edge_[a] = e1;
+  if (b != kInfinite && vert_edge_[b] == g1) vert_edge_[b] = e2;
+  if (c != kInfinite && (vert_edge_[c] == g2 || vert_edge_[c] == h1)) vert_edge_[c] = e0;
+  compacted_ = false;
+}
+
+void Mesh::unsplit_edge(HalfEdgeId g) {
+  // g = v->b in (v,b,c); h = v->c in (v,c,a) becomes (b,c,a).
+  const HalfEdgeId g1 = next_edge(g), g2 = prev_edge(g);
+  const HalfEdgeId h0 = twin_[g2], h1 = next_edge(h0), h2 = prev_edge(h0);
+  assert(h0 != kNone);
+  const VertexId v = tri_v_[g], b = tri_v_[g1], c = tri_v_[g2], a = tri_v_[h2];
+  const HalfEdgeId tw_bc = twin_[g1];
+  const std::uint8_t fl_bc = edge_flags(g1);
+  const int m_bc = edge_marker(g1);
+  // Other side: f = b->v in (b,v,d) becomes (b,a,d); k = d->v in (d,v,a) goes.
+  const HalfEdgeId f = twin_[g];
+  HalfEdgeId f1 = kNone, f2 = kNone, k0 = kNone, k2 = kNone, tw_ad = kNone;
+  std::uint8_t fl_ad = 0;
+  int m_ad = 0;
+  VertexId d = kNone;
+  if (f != kNone) {
+    f1 = next_edge(f);
+    f2 = prev_edge(f);
+    k0 = twin_[f1];
+    assert(k0 != kNone);
+    k2 = prev_edge(k0);
+    d = tri_v_[f2];
+    tw_ad = twin_[k2];
+    fl_ad = edge_flags(k2);
+    m_ad = edge_marker(k2);
+  }
+  auto relink = [&](HalfEdgeId x, HalfEdgeId y) {
+    twin_[x] = y;
+    if (y != kNone) twin_[y] = x;
+  };
+  remove_triangle(tri_of(g));
+  if (f != kNone) remove_triangle(tri_of(k0));
+  const TriId t1 = tri_of(h0);
+  note_removed(t1);
+  tri_v_[h0] = b;  // (b, c, a)
+  note_added(t1);
+  relink(h0, tw_bc);
+  if (!edge_flags_.empty()) edge_flags_[h0] = fl_bc;
+  if (!edge_markers_.empty()) edge_markers_[h0] = m_bc;
+  twin_[h2] = kNone;
+  if (f != kNone) {
+    const TriId t3 = tri_of(f);
+    note_removed(t3);
+    tri_v_[f1] = a;  // (b, a, d)
+    note_added(t3);
+    relink(f1, tw_ad);
+    if (!edge_flags_.empty()) edge_flags_[f1] = fl_ad;
+    if (!edge_markers_.empty()) edge_markers_[f1] = m_ad;
+    link(h2, f);
+  }
+  vert_edge_[v] = kNone;
+  if (b != kInfinite && vert_edge_[b] == g1) vert_edge_[b] = h0;
+  if (c != kInfinite && vert_edge_[c] == g2) vert_edge_[c] = h1;
+  if (f != kNone) {
+    if (a != kInfinite && vert_edge_[a] == k2) vert_edge_[a] = f1;
+    if (d != kInfinite && vert_edge_[d] == k0) vert_edge_[d] = f2;
+  }
+  compacted_ = false;
+}
+
 namespace {
 // Small deterministic generator for the walk's random edge order.
 inline std::uint32_t walk_random(std::uint64_t& s) {
