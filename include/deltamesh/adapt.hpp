@@ -70,7 +70,9 @@ struct CoarsenStats {
 // keeping it one: the same domain, holes and segments (as chains of
 // constrained edges). Removable: interior vertices with no constrained edge,
 // and vertices inside a straight segment chain (exactly two constrained
-// edges, exactly collinear, same marker), whose two subsegments merge.
+// edges, same marker, collinear: exactly, or within 1e-11 of the line
+// through the two neighbours relative to their distance, since split points
+// of slanted segments are rounded off the line), whose subsegments merge.
 // Vertices where segments end or bend, or where markers change, stay.
 // Candidates go smallest shortest-edge/h first (a heap, re-keyed as stars
 // change), which grades the result. Each removal flips the vertex's degree
