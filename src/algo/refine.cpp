@@ -347,6 +347,25 @@ class Refiner {
 
   // Scratch, reused by every insertion.
   std::vector<TriId> cav_;
+  // Cavity membership in O(1): in_cav_[t] == cav_stamp_ while t is in cav_
+  // (a huge cocircular cavity made the linear search quadratic).
+  std::vector<std::uint32_t> in_cav_;
+  std::uint32_t cav_stamp_ = 0;
+  void begin_cavity() {
+    cav_.clear();
+    bnd_.clear();
+    stack_.clear();
+    if (++cav_stamp_ == 0) {
+      std::fill(in_cav_.begin(), in_cav_.end(), 0);
+      cav_stamp_ = 1;
+    }
+  }
+  void add_to_cavity(TriId t) {
+    if (t >= in_cav_.size()) in_cav_.resize(std::max<std::size_t>(t + 1, 2 * in_cav_.size()), 0);
+    in_cav_[t] = cav_stamp_;
+    cav_.push_back(t);
+  }
+  bool in_cavity(TriId t) const { return t < in_cav_.size() && in_cav_[t] == cav_stamp_; }
   std::vector<BoundaryEdge> bnd_;
   std::vector<HalfEdgeId> stack_;
   std::vector<TriId> fan_;
@@ -856,10 +875,8 @@ Point Refiner::steiner_point(TriId t, const Eval& ev, bool& offcenter) const {
 bool Refiner::score(TriId t, const Point& c, double min2, int& bad, double& radius2) {
   const HalfEdgeId b0 = 3 * t;
   if (!(incircle(pts_[tv_[b0]], pts_[tv_[b0 + 1]], pts_[tv_[b0 + 2]], c) > 0)) return false;
-  cav_.clear();
-  bnd_.clear();
-  stack_.clear();
-  cav_.push_back(t);
+  begin_cavity();
+  add_to_cavity(t);
   stack_.push_back(b0 + 2);
   stack_.push_back(b0 + 1);
   stack_.push_back(b0);
@@ -1071,8 +1088,8 @@ bool Refiner::grow(const Point& c, std::size_t stack_base) {
       if (incircle(pa, pb, pc, c) > 0) {
         // The cavity's dual graph is a tree; meeting a triangle twice means
         // the predicates and the mesh disagree: give up on this point.
-        if (std::find(cav_.begin(), cav_.end(), u) != cav_.end()) return false;
-        cav_.push_back(u);
+        if (in_cavity(u)) return false;
+        add_to_cavity(u);
         stack_.push_back(prev_edge(f));
         stack_.push_back(next_edge(f));
         continue;
@@ -1128,10 +1145,8 @@ bool Refiner::keep_split_inside(HalfEdgeId e, Point& m) const {
 
 // Cavity of point c (inside seed or on one of its unconstrained edges).
 bool Refiner::cavity(const Point& c, TriId seed) {
-  cav_.clear();
-  bnd_.clear();
-  stack_.clear();
-  cav_.push_back(seed);
+  begin_cavity();
+  add_to_cavity(seed);
   stack_.push_back(3 * seed + 2);
   stack_.push_back(3 * seed + 1);
   stack_.push_back(3 * seed);
@@ -1152,11 +1167,9 @@ bool Refiner::cavity(const Point& c, TriId seed) {
 // far-side triangle whose circle misses it would keep an edge that is not
 // locally Delaunay against m. Then the split fails.
 bool Refiner::split_cavity(HalfEdgeId e, const Point& m) {
-  cav_.clear();
-  bnd_.clear();
-  stack_.clear();
+  begin_cavity();
   if (!in_circumcircle(tri_of(e), m)) return false;
-  cav_.push_back(tri_of(e));
+  add_to_cavity(tri_of(e));
   stack_.push_back(prev_edge(e));
   stack_.push_back(next_edge(e));
   if (!grow(m, 0)) return false;
@@ -1164,7 +1177,7 @@ bool Refiner::split_cavity(HalfEdgeId e, const Point& m) {
   const HalfEdgeId f = tw_[e];
   if (f != kNone) {
     if (!in_circumcircle(tri_of(f), m)) return false;
-    cav_.push_back(tri_of(f));
+    add_to_cavity(tri_of(f));
     stack_.push_back(prev_edge(f));
     stack_.push_back(next_edge(f));
     if (!grow(m, 0)) return false;
@@ -1433,7 +1446,7 @@ void Refiner::insert_interior(const Point& c, TriId seed) {
   // Vertices whose out-edge lies in the cavity get the fan's outer edge.
   for (std::size_t i = 0; i < n; ++i) {
     const HalfEdgeId oe = ve_[bnd_[i].a];
-    if (oe == kNone || std::find(cav_.begin(), cav_.end(), tri_of(oe)) != cav_.end()) ve_[bnd_[i].a] = 3 * fan_[i] + 1;
+    if (oe == kNone || in_cavity(tri_of(oe))) ve_[bnd_[i].a] = 3 * fan_[i] + 1;
   }
   for (std::size_t i = 0; i < n; ++i) {
     const TriId t = fan_[i];
@@ -1500,11 +1513,11 @@ bool Refiner::split_segment(HalfEdgeId e, const Point* at, int depth) {
   for (std::size_t i = cav_.size(); i < n; ++i) fan_[i] = take_slot(i, n, v);
   for (std::size_t i = 0; i < n; ++i) {
     const HalfEdgeId oe = ve_[bnd_[i].a];
-    if (oe == kNone || std::find(cav_.begin(), cav_.end(), tri_of(oe)) != cav_.end()) ve_[bnd_[i].a] = 3 * fan_[i] + 1;
+    if (oe == kNone || in_cavity(tri_of(oe))) ve_[bnd_[i].a] = 3 * fan_[i] + 1;
   }
   if (boundary) {
     const HalfEdgeId oe = ve_[a];
-    if (oe == kNone || std::find(cav_.begin(), cav_.end(), tri_of(oe)) != cav_.end()) ve_[a] = 3 * fan_[n1 - 1] + 2;
+    if (oe == kNone || in_cavity(tri_of(oe))) ve_[a] = 3 * fan_[n1 - 1] + 2;
   }
   auto write = [&](std::size_t i) {
     const TriId t = fan_[i];
