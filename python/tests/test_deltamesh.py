@@ -4,8 +4,11 @@ interpreter the module was built for and PYTHONPATH=<build>/python).
 Every mesh produced here goes through deltamesh.validate (the library's exact
 validator, on the arrays returned), and properties are asserted as bounds.
 """
+import contextlib
+import io
 import math
 import os
+import re
 import tempfile
 import threading
 import unittest
@@ -405,6 +408,28 @@ class Files(unittest.TestCase):
             self.assertIn("bad.poly:3", str(cm.exception))
             with self.assertRaises(OSError):
                 deltamesh.read(os.path.join(d, "missing.poly"))
+
+
+class Docs(unittest.TestCase):
+    def test_docs_example_runs(self):
+        """The example in docs/python.md runs and prints what the text says it checks."""
+        doc = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "docs", "python.md")
+        with open(doc) as f:
+            code = re.search(r"```python\n(.*?)```", f.read(), re.S).group(1)
+        out = io.StringIO()
+        with contextlib.redirect_stdout(out):
+            exec(compile(code, doc, "exec"), {})
+        lines = out.getvalue().splitlines()
+        self.assertEqual(len(lines), 4)
+        self.assertTrue(lines[1].startswith("True "))  # complete
+        self.assertGreaterEqual(float(lines[1].split()[2]), 30)  # smallest angle
+        self.assertTrue(lines[2].startswith("mesh is valid"))
+        self.assertEqual(lines[3], "True")  # dict and keyword forms agree
+
+    def test_check_switch_reports(self):
+        mesh = quiet_triangulate(square_with_hole(), "pq30C")
+        self.assertRegex(mesh["stats"]["check"], "^mesh is valid")
+        deltamesh.validate(mesh)
 
 
 if __name__ == "__main__":
