@@ -487,7 +487,9 @@ struct SizeCallback {
       if (error || !bad_value.empty()) return -1.0;
       py::gil_scoped_acquire gil;
       try {
-        const double v = fn(x, y).cast<double>();
+        const py::object r = fn(x, y);
+        const double v = PyFloat_AsDouble(r.ptr());  // TypeError for a non-number
+        if (v == -1.0 && PyErr_Occurred()) throw py::error_already_set();
         if (!std::isfinite(v)) {
           bad_value = std::string(name) + " returned " + number_text(v) + " at (" + number_text(x) + ", " + number_text(y) +
                       "); it must return a finite area or length (<= 0: no bound)";
@@ -998,7 +1000,7 @@ py::dict read_file(const std::string& path) {
   const std::string node = base + ".node", ele = base + ".ele", poly = base + ".poly";
   if (!fs::exists(node)) {
     if (base == path && fs::exists(poly)) return read_file(poly);
-    throw py::value_error("read: no file '" + node + "'" + (base == path ? " (give FILE.node, FILE.poly, FILE.ele or FILE.geojson)" : ""));
+    throw dm::IoError("cannot open '" + node + "'" + (base == path ? " (read takes FILE.node, FILE.poly, FILE.ele, FILE or FILE.geojson)" : ""));
   }
   dm::Pslg p;
   dm::EleData e;

@@ -191,6 +191,8 @@ class Quality(unittest.TestCase):
         self.assertGreater((c[:, 0] < 0.3).sum(), 300)  # about 0.3 / 0.001 triangles there
         with self.assertRaises(ZeroDivisionError):  # the callback's own exception comes through
             deltamesh.triangulate(square_with_hole(), "pq", max_area_fn=lambda x, y: 1 / 0)
+        with self.assertRaises(TypeError):
+            deltamesh.triangulate(square_with_hole(), "pq", max_area_fn=lambda x, y: "small")
         with self.assertRaisesRegex(ValueError, "max_area_fn returned nan"):
             deltamesh.triangulate(square_with_hole(), "pq", max_area_fn=lambda x, y: math.nan)
 
@@ -406,8 +408,9 @@ class Files(unittest.TestCase):
                 deltamesh.read(path)
             self.assertEqual(cm.exception.line, 3)
             self.assertIn("bad.poly:3", str(cm.exception))
-            with self.assertRaises(OSError):
-                deltamesh.read(os.path.join(d, "missing.poly"))
+            for missing in ("missing.poly", "missing.node", "missing"):
+                with self.assertRaisesRegex(deltamesh.IoError, "missing"):
+                    deltamesh.read(os.path.join(d, missing))
 
 
 class Docs(unittest.TestCase):
