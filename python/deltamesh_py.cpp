@@ -709,6 +709,59 @@ py::dict mesh_dict(const dm::Mesh& mesh, const Options& o, const Input& in, cons
   return out;
 }
 
+// The smallest and largest angle of the mesh in degrees. quality_report()
+// computes far more and costs as much as a Delaunay triangulation, so this
+// ranks triangles by a monotone proxy and takes atan2 for the two winners
+// only: the smallest angle sits between the two longer edges b, c and is
+// at most 60 degrees, where cross^2 / (b^2 c^2) = sin^2 grows with the angle;
+// the largest sits between the two shorter edges, where the signed square of
+// dot / (|b| |c|) = cos falls as the angle grows.
+std::pair<double, double> extreme_angles(const dm::Mesh& mesh) {
+  double best_min = 2.0, best_max = 2.0;
+  double min_deg = 0.0, max_deg = 0.0;
+  const std::size_t slots = mesh.num_triangle_slots();
+  auto angle_at = [&](const dm::Point& apex, const dm::Point& p, const dm::Point& q) {
+    const double ux = p.x - apex.x, uy = p.y - apex.y, vx = q.x - apex.x, vy = q.y - apex.y;
+    return std::atan2(std::abs(ux * vy - uy * vx), ux * vx + uy * vy) * (180.0 / 3.14159265358979323846);
+  };
+  for (dm::TriId t = 0; t < slots; ++t) {
+    if (!mesh.is_real(t)) continue;
+    const auto v = mesh.triangle(t);
+    const dm::Point* p[3] = {&mesh.point(v[0]), &mesh.point(v[1]), &mesh.point(v[2])};
+    double len2[3];  // len2[k]: edge opposite corner k
+    for (int k = 0; k < 3; ++k) {
+      const dm::Point& a = *p[(k + 1) % 3];
+      const dm::Point& b = *p[(k + 2) % 3];
+      len2[k] = (a.x - b.x) * (a.x - b.x) + (a.y - b.y) * (a.y - b.y);
+    }
+    const int shortest = len2[0] <= len2[1] ? (len2[0] <= len2[2] ? 0 : 2) : (len2[1] <= len2[2] ? 1 : 2);
+    const int longest = len2[0] >= len2[1] ? (len2[0] >= len2[2] ? 0 : 2) : (len2[1] >= len2[2] ? 1 : 2);
+    const double ux = p[1]->x - p[0]->x, uy = p[1]->y - p[0]->y, wx = p[2]->x - p[0]->x, wy = p[2]->y - p[0]->y;
+    const double cross = ux * wy - uy * wx;
+    auto corner_terms = [&](int k, double& bc2, double& dot) {
+      const dm::Point& a = *p[k];
+      const dm::Point& b = *p[(k + 1) % 3];
+      const dm::Point& c = *p[(k + 2) % 3];
+      bc2 = len2[(k + 1) % 3] * len2[(k + 2) % 3];
+      dot = (b.x - a.x) * (c.x - a.x) + (b.y - a.y) * (c.y - a.y);
+    };
+    double bc2 = 0, dot = 0;
+    corner_terms(shortest, bc2, dot);
+    const double sin2 = bc2 > 0 ? cross * cross / bc2 : 0.0;
+    if (sin2 < best_min) {
+      best_min = sin2;
+      min_deg = angle_at(*p[shortest], *p[(shortest + 1) % 3], *p[(shortest + 2) % 3]);
+    }
+    corner_terms(longest, bc2, dot);
+    const double cos2 = bc2 > 0 ? dot * std::abs(dot) / bc2 : -1.0;
+    if (cos2 < best_max) {
+      best_max = cos2;
+      max_deg = angle_at(*p[longest], *p[(longest + 1) % 3], *p[(longest + 2) % 3]);
+    }
+  }
+  return {min_deg, max_deg};
+}
+
 py::dict stats_dict(const dm::Mesh& mesh, const Options& o, const RunResult& res) {
   const dm::TriangulateStats& s = res.stats;
   py::dict d;
@@ -722,12 +775,9 @@ py::dict stats_dict(const dm::Mesh& mesh, const Options& o, const RunResult& res
   d["holes_ignored"] = s.domain.holes_ignored;
   d["regions_used"] = s.domain.regions_used;
   d["regions_ignored"] = s.domain.regions_ignored;
-  dm::QualityOptions q;
-  q.min_angle_deg = o.quality ? o.min_angle.value_or(20.0) : 0.0;
-  q.max_area = o.max_area.value_or(-1.0);
-  const dm::QualityReport qr = dm::quality_report(mesh, q);
-  d["min_angle"] = qr.triangles ? py::object(py::float_(qr.min_angle_deg)) : py::object(py::none());
-  d["max_angle"] = qr.triangles ? py::object(py::float_(qr.max_angle_deg)) : py::object(py::none());
+  const auto [min_angle, max_angle] = extreme_angles(mesh);
+  d["min_angle"] = mesh.num_triangles() ? py::object(py::float_(min_angle)) : py::object(py::none());
+  d["max_angle"] = mesh.num_triangles() ? py::object(py::float_(max_angle)) : py::object(py::none());
   d["refined"] = res.refined;
   d["complete"] = !res.refined || s.refine.complete;
   d["steiner_points"] = res.refined ? s.refine.steiner_points : 0;

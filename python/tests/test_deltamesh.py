@@ -169,6 +169,9 @@ class Quality(unittest.TestCase):
         q = deltamesh.quality(mesh, min_angle=30, max_area=0.01)
         self.assertEqual((q["below_angle"], q["above_area"]), (0, 0))
         self.assertEqual(sum(q["angle_histogram"]), 3 * len(mesh["triangles"]))
+        # stats' angles (a cheaper pass) are the quality report's
+        self.assertAlmostEqual(st["min_angle"], q["min_angle"], places=12)
+        self.assertAlmostEqual(st["max_angle"], q["max_angle"], places=12)
 
     def test_budget_stops_with_a_warning_and_a_valid_mesh(self):
         with self.assertWarnsRegex(UserWarning, "Steiner budget"):
