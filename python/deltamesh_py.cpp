@@ -104,13 +104,12 @@ std::string dtype_name(const py::array& a) { return py::str(a.dtype()).cast<std:
 
 // Shape check: (rows, cols) with cols == want (0: any); a 1-D array is one
 // column when want == 1 (markers) or when any width is allowed (attributes);
-// an empty array of any shape is zero rows.
+// an empty list or a (0, k) array is zero rows.
 std::pair<std::size_t, std::size_t> rows_cols(const py::array& a, const std::string& name, std::size_t want,
                                               std::size_t rows_expected = static_cast<std::size_t>(-1)) {
   std::size_t rows = 0, cols = want;
-  if (a.size() == 0 && a.ndim() <= 2) {
-    rows = a.ndim() == 2 ? static_cast<std::size_t>(a.shape(0)) : 0;
-    if (a.ndim() == 2) cols = static_cast<std::size_t>(a.shape(1));
+  if ((a.ndim() == 1 && a.shape(0) == 0) || (a.ndim() == 2 && a.shape(0) == 0)) {
+    rows = 0;
   } else if (a.ndim() == 2 && (want == 0 || static_cast<std::size_t>(a.shape(1)) == want)) {
     rows = static_cast<std::size_t>(a.shape(0));
     cols = static_cast<std::size_t>(a.shape(1));
@@ -124,12 +123,10 @@ std::pair<std::size_t, std::size_t> rows_cols(const py::array& a, const std::str
     const std::string expected = want == 0 ? "(n, k)" : want == 1 ? "(n,) or (n, 1)" : "(n, " + std::to_string(want) + ")";
     bad(name, "expected an array of shape " + expected + ", got shape " + shape);
   }
-  if (rows_expected != static_cast<std::size_t>(-1) && rows != rows_expected && !(rows == 0 && a.size() == 0))
+  if (rows_expected != static_cast<std::size_t>(-1) && rows != rows_expected)
     bad(name, "has " + std::to_string(rows) + " rows, expected " + std::to_string(rows_expected) + " (one per " +
                   (name.find("triangle") != std::string::npos ? "triangle" : name.find("segment") != std::string::npos ? "segment" : "vertex") +
                   ")");
-  if (rows == 0 && rows_expected != static_cast<std::size_t>(-1) && rows_expected != 0 && a.size() == 0)
-    bad(name, "is empty, expected " + std::to_string(rows_expected) + " rows");
   return {rows, cols};
 }
 

@@ -306,6 +306,9 @@ class Errors(unittest.TestCase):
             (dict(vertices=[[0, 0], [1, 0], [0, 1]], holes=[[math.inf, 0]]), "holes: row 0 holds inf"),
             (dict(vertices=[[0, 0], [1, 0], [0, 1]], vertice=[]), "unknown key 'vertice'"),
             (dict(segments=[[0, 1]]), "vertices: required"),
+            (dict(vertices=np.zeros((5, 0))), "vertices: expected an array of shape \\(n, 2\\), got shape \\(5, 0\\)"),
+            (dict(vertices=np.float64(1)), "vertices: expected an array of shape"),
+            (dict(vertices=[[0, 0], [1, 0], [0, 1]], vertex_attributes=[]), "vertex_attributes: has 0 rows, expected 3"),
         ]
         for tri, message in cases:
             with self.subTest(message=message), self.assertRaisesRegex(ValueError, message):
@@ -329,6 +332,12 @@ class Errors(unittest.TestCase):
             deltamesh.triangulate(dict(vertices=[[0, 0], [1, 0], [2, 0]]))
         self.assertIsInstance(cm.exception, ValueError)
         self.assertIsInstance(cm.exception, deltamesh.Error)
+        with self.assertRaises(deltamesh.InputError):
+            deltamesh.triangulate(dict(vertices=np.zeros((0, 2))))
+        # zero attribute columns are fine
+        mesh = quiet_triangulate(dict(vertices=[[0, 0], [1, 0], [0, 1]], vertex_attributes=np.zeros((3, 0))))
+        self.assertNotIn("vertex_attributes", mesh)
+        deltamesh.validate(mesh)
         crossing = dict(vertices=[[0, 0], [2, 2], [0, 2], [2, 0]], segments=[[0, 1], [2, 3]])
         with self.assertRaises(deltamesh.IntersectingSegments) as cm:
             deltamesh.triangulate(crossing, "p --strict")
