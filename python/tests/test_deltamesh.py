@@ -231,6 +231,43 @@ class Quality(unittest.TestCase):
         deltamesh.validate({k: mesh[k] for k in ("vertices", "triangles")})
 
 
+class RandomInputs(unittest.TestCase):
+    def test_seeded_random_pslgs(self):
+        """Random points with random (crossing) segments on a coarse grid, so that
+        collinear and duplicate points and segments through vertices occur; every
+        result validates, covers the hull and keeps the bounds."""
+        for seed in range(25):
+            with self.subTest(seed=seed):
+                rng = np.random.default_rng(seed)
+                n = int(rng.integers(3, 40))
+                pts = rng.integers(0, 8, size=(n, 2)).astype(float) * (10.0 ** rng.integers(-6, 7))
+                if len(np.unique(pts, axis=0)) < 3:
+                    continue
+                segs = rng.integers(0, n, size=(int(rng.integers(0, 15)), 2))
+                segs = segs[segs[:, 0] != segs[:, 1]]
+                try:
+                    mesh = deltamesh.triangulate(dict(vertices=pts, segments=segs), "pcq25Q")
+                except deltamesh.InputError as e:  # all points collinear
+                    self.assertIn("collinear", str(e))
+                    continue
+                deltamesh.validate(mesh)
+                self.assertGreater(len(mesh["triangles"]), 0)
+                a = areas(mesh)
+                self.assertTrue((a > 0).all())
+                # with -c the domain is the convex hull of the input points
+                lo, hi = pts.min(0), pts.max(0)
+                self.assertTrue(((mesh["vertices"] >= lo) & (mesh["vertices"] <= hi)).all())
+                np.testing.assert_array_equal(mesh["vertices"][:n], pts)
+                # the refiner's count of triangles below the bound is what the arrays show,
+                # and each of them has a reason (small input angle, precision, ...)
+                r, ma = mesh["stats"]["refine"], min_angles(mesh)
+                self.assertTrue(mesh["stats"]["complete"])
+                self.assertLessEqual((ma < 25 - 1e-9).sum(), r["below_bound"])
+                self.assertLessEqual(r["below_bound"], (ma < 25 + 1e-9).sum())
+                self.assertEqual(r["below_bound"], r["below_small_input_angle"] + r["below_segment_protected"] +
+                                 r["below_budget"] + r["below_precision"])
+
+
 class DictAndKeywords(unittest.TestCase):
     def assert_same(self, a, b):
         self.assertEqual(set(a) - {"stats"}, set(b) - {"stats"})
