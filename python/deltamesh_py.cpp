@@ -324,7 +324,7 @@ std::optional<std::string> refused_switch(char c) {
     case 'N': return "-N (no .node file) would drop the vertices; there are no files here";
     case 'E': return "-E (no .ele file) would drop the triangles; there are no files here";
     case 'g': return "-g writes an .off file: use deltamesh.write(mesh, 'out.off')";
-    case 'v': return "-v (Voronoi diagram) is not available in the Python bindings yet";
+    case 'v': return "-v (Voronoi diagram): use deltamesh.voronoi(vertices)";
     case 'h': return "-h prints the command line help: see help(deltamesh.triangulate)";
     case 'u': return "-u (user size function): pass max_area_fn=f(x, y) to the keyword form of deltamesh.triangulate";
     default: return std::nullopt;
@@ -1101,6 +1101,57 @@ void write_file(const py::dict& tri, const std::string& path, int first_index, b
   dm::write_output(r.mesh, path, oo);
 }
 
+// The Delaunay triangulation of points (no segments), for delaunay(),
+// convex_hull() and voronoi().
+dm::Mesh delaunay_mesh(py::handle vertices) {
+  InputArrays a{};
+  a.vertices = vertices;
+  Input in = read_input(a);
+  dm::TriangulateOptions topt;
+  topt.use_segments = false;
+  py::gil_scoped_release nogil;
+  return dm::triangulate(in.pslg, topt);
+}
+
+py::array_t<std::int32_t> delaunay_triangles(py::handle vertices) {
+  const dm::Mesh mesh = delaunay_mesh(vertices);
+  std::vector<std::int32_t> t;
+  for (dm::TriId i = 0; i < mesh.num_triangle_slots(); ++i)
+    if (mesh.is_real(i))
+      for (const dm::VertexId v : mesh.triangle(i)) t.push_back(static_cast<std::int32_t>(v));
+  return array_2d(t, 3);
+}
+
+py::array_t<std::int32_t> hull_segments(py::handle vertices) {
+  const dm::Mesh mesh = delaunay_mesh(vertices);
+  std::vector<std::int32_t> s;
+  for (dm::HalfEdgeId e = 0; e < mesh.triangle_vertices().size(); ++e)
+    if (mesh.is_real(dm::tri_of(e)) && real_twin(mesh, e) == dm::kNone)
+      s.insert(s.end(), {static_cast<std::int32_t>(mesh.origin(e)), static_cast<std::int32_t>(mesh.dest(e))});
+  return array_2d(s, 2);
+}
+
+py::dict voronoi_dict(py::handle vertices) {
+  const dm::Mesh mesh = delaunay_mesh(vertices);
+  dm::VoronoiDiagram vd;
+  {
+    py::gil_scoped_release nogil;
+    vd = dm::voronoi_diagram(mesh);
+  }
+  std::vector<double> xy, dir;
+  std::vector<std::int32_t> edges;
+  for (const dm::Point& p : vd.vertices) xy.insert(xy.end(), {p.x, p.y});
+  for (const auto& e : vd.edges) {
+    edges.insert(edges.end(), {static_cast<std::int32_t>(e.a), e.is_ray() ? -1 : static_cast<std::int32_t>(e.b)});
+    dir.insert(dir.end(), {e.is_ray() ? e.direction.x : 0.0, e.is_ray() ? e.direction.y : 0.0});
+  }
+  py::dict d;
+  d["vertices"] = array_2d(xy, 2);
+  d["edges"] = array_2d(edges, 2);
+  d["ray_directions"] = array_2d(dir, 2);
+  return d;
+}
+
 }  // namespace
 
 PYBIND11_MODULE(deltamesh, m) {
@@ -1170,6 +1221,18 @@ markers=False 'B', quiet 'Q'; triangles=... is 'r'. fill, cdt, steiner,
 encroachment, order, time_limit are the command line's long options.
 max_area_fn(x, y) / max_edge_fn(x, y): size functions evaluated at triangle
 centroids (<= 0: no bound there); they refine like max_area.)");
+
+  m.def("delaunay", &delaunay_triangles, py::arg("vertices"),
+        "Delaunay triangulation of points: the (M, 3) int32 triangles (counter-clockwise) of triangulate({'vertices': v}).");
+  m.def("convex_hull", &hull_segments, py::arg("vertices"),
+        "Convex hull edges of points as (H, 2) int32 vertex pairs, counter-clockwise around the hull (points on "
+        "a hull edge split it).");
+  m.def("voronoi", &voronoi_dict, py::arg("vertices"),
+        R"(Voronoi diagram of points (the dual of their Delaunay triangulation):
+vertices (V, 2) float64, one circumcentre per Delaunay triangle (in
+delaunay()'s order); edges (E, 2) int32, one per Delaunay edge, the second
+end -1 for an infinite ray; ray_directions (E, 2) float64, the outward
+direction of each ray (0, 0 for finite edges).)");
 
   m.def("check", &check_dict, py::arg("mesh"), py::kw_only(), py::arg("delaunay") = true,
         py::arg("convex_hull") = false, py::arg("segments") = true,

@@ -232,6 +232,50 @@ class Quality(unittest.TestCase):
         deltamesh.validate({k: mesh[k] for k in ("vertices", "triangles")})
 
 
+class PointSets(unittest.TestCase):
+    """delaunay(), convex_hull() and voronoi(), the `triangle` package's helpers."""
+
+    def setUp(self):
+        # integer coordinates: the numpy orientation tests below are exact
+        self.pts = np.random.default_rng(11).integers(0, 1000, size=(200, 2)).astype(float)
+
+    def test_delaunay_is_triangulate_without_switches(self):
+        tris = deltamesh.delaunay(self.pts)
+        self.assertEqual((tris.dtype, tris.shape[1]), (np.int32, 3))
+        np.testing.assert_array_equal(tris, quiet_triangulate({"vertices": self.pts})["triangles"])
+        deltamesh.validate(dict(vertices=self.pts, triangles=tris), convex_hull=True)
+
+    def test_convex_hull_edges_enclose_every_point(self):
+        hull = deltamesh.convex_hull(self.pts)
+        p, q = self.pts[hull[:, 0]], self.pts[hull[:, 1]]
+        for x in self.pts:  # every point on the left of or on every hull edge
+            side = (q[:, 0] - p[:, 0]) * (x[1] - p[:, 1]) - (q[:, 1] - p[:, 1]) * (x[0] - p[:, 0])
+            self.assertTrue((side >= 0).all())
+        # one closed cycle: each hull vertex starts one edge and ends one
+        self.assertEqual(sorted(hull[:, 0]), sorted(hull[:, 1]))
+        nxt = dict(hull)
+        v, steps = hull[0, 0], 0
+        while True:
+            v, steps = nxt[v], steps + 1
+            if v == hull[0, 0]:
+                break
+        self.assertEqual(steps, len(hull))
+
+    def test_voronoi_is_the_dual(self):
+        tris = deltamesh.delaunay(self.pts)
+        vor = deltamesh.voronoi(self.pts)
+        self.assertEqual(len(vor["vertices"]), len(tris))
+        # each Voronoi vertex is equidistant from its triangle's corners
+        d = np.linalg.norm(self.pts[tris] - vor["vertices"][:, None, :], axis=2)
+        np.testing.assert_allclose(d, d[:, :1].repeat(3, axis=1), rtol=1e-9)
+        rays = vor["edges"][:, 1] == -1
+        n_edges = len(edge_set(np.vstack([tris[:, [0, 1]], tris[:, [1, 2]], tris[:, [2, 0]]])))
+        self.assertEqual(len(vor["edges"]), n_edges)
+        self.assertEqual(rays.sum(), len(deltamesh.convex_hull(self.pts)))
+        self.assertTrue((np.linalg.norm(vor["ray_directions"][rays], axis=1) > 0).all())
+        self.assertTrue((vor["ray_directions"][~rays] == 0).all())
+
+
 class RandomInputs(unittest.TestCase):
     def test_seeded_random_pslgs(self):
         """Random points with random (crossing) segments on a coarse grid, so that
