@@ -38,13 +38,13 @@ namespace {
 // Exceptions: deltamesh.Error and subclasses, created in the module init.
 
 struct ExceptionTypes {
-  PyObject* error = nullptr;        // deltamesh.Error(Exception)
-  PyObject* input = nullptr;        // deltamesh.InputError(Error, ValueError)
-  PyObject* parse = nullptr;        // deltamesh.ParseError(InputError)
-  PyObject* intersecting = nullptr; // deltamesh.IntersectingSegments(InputError)
-  PyObject* segment = nullptr;      // deltamesh.SegmentError(InputError)
-  PyObject* io = nullptr;           // deltamesh.IoError(Error, OSError)
-  PyObject* check = nullptr;        // deltamesh.CheckError(Error)
+  PyObject* error = nullptr;         // deltamesh.Error(Exception)
+  PyObject* input = nullptr;         // deltamesh.InputError(Error, ValueError)
+  PyObject* parse = nullptr;         // deltamesh.ParseError(InputError)
+  PyObject* intersecting = nullptr;  // deltamesh.IntersectingSegments(InputError)
+  PyObject* segment = nullptr;       // deltamesh.SegmentError(InputError)
+  PyObject* io = nullptr;            // deltamesh.IoError(Error, OSError)
+  PyObject* check = nullptr;         // deltamesh.CheckError(Error)
 };
 ExceptionTypes g_exc;  // references owned by the module (never freed: the module lives until exit)
 
@@ -77,7 +77,8 @@ void translate_exception(std::exception_ptr p) {
   } catch (const dm::SegmentError& e) {
     raise_with(g_exc.segment, e.what(), {{"segment", py::int_(e.segment())}});
   } catch (const dm::InputError& e) {
-    py::object index = e.index() == static_cast<std::size_t>(-1) ? py::object(py::none()) : py::object(py::int_(e.index()));
+    py::object index =
+        e.index() == static_cast<std::size_t>(-1) ? py::object(py::none()) : py::object(py::int_(e.index()));
     raise_with(g_exc.input, e.what(), {{"index", index}});
   } catch (const dm::IoError& e) {
     raise_with(g_exc.io, e.what());
@@ -120,12 +121,16 @@ std::pair<std::size_t, std::size_t> rows_cols(const py::array& a, const std::str
     std::string shape = "(";
     for (py::ssize_t d = 0; d < a.ndim(); ++d) shape += (d ? ", " : "") + std::to_string(a.shape(d));
     shape += a.ndim() == 1 ? ",)" : ")";
-    const std::string expected = want == 0 ? "(n, k)" : want == 1 ? "(n,) or (n, 1)" : "(n, " + std::to_string(want) + ")";
+    const std::string expected = want == 0   ? "(n, k)"
+                                 : want == 1 ? "(n,) or (n, 1)"
+                                             : "(n, " + std::to_string(want) + ")";
     bad(name, "expected an array of shape " + expected + ", got shape " + shape);
   }
   if (rows_expected != static_cast<std::size_t>(-1) && rows != rows_expected)
     bad(name, "has " + std::to_string(rows) + " rows, expected " + std::to_string(rows_expected) + " (one per " +
-                  (name.find("triangle") != std::string::npos ? "triangle" : name.find("segment") != std::string::npos ? "segment" : "vertex") +
+                  (name.find("triangle") != std::string::npos  ? "triangle"
+                   : name.find("segment") != std::string::npos ? "segment"
+                                                               : "vertex") +
                   ")");
   return {rows, cols};
 }
@@ -150,8 +155,8 @@ Doubles to_doubles(py::handle obj, const std::string& name, std::size_t want_col
   d.v.assign(c.data(), c.data() + d.rows * d.cols);
   for (std::size_t i = 0; i < d.v.size(); ++i)
     if (!std::isfinite(d.v[i]))
-      bad(name, "row " + std::to_string(i / std::max<std::size_t>(d.cols, 1)) + " holds " + (std::isnan(d.v[i]) ? "nan" : "inf") +
-                    " (coordinates must be finite)");
+      bad(name, "row " + std::to_string(i / std::max<std::size_t>(d.cols, 1)) + " holds " +
+                    (std::isnan(d.v[i]) ? "nan" : "inf") + " (values must be finite)");
   return d;
 }
 
@@ -193,7 +198,8 @@ std::vector<int> to_markers(py::handle obj, const std::string& name, std::size_t
   Ints r = to_ints(obj, name, 1, rows);
   std::vector<int> out(r.v.size());
   for (std::size_t i = 0; i < r.v.size(); ++i) {
-    if (r.v[i] < INT32_MIN || r.v[i] > INT32_MAX) bad(name, "marker " + std::to_string(r.v[i]) + " does not fit 32 bits");
+    if (r.v[i] < INT32_MIN || r.v[i] > INT32_MAX)
+      bad(name, "marker " + std::to_string(r.v[i]) + " does not fit 32 bits");
     out[i] = static_cast<int>(r.v[i]);
   }
   return out;
@@ -242,7 +248,8 @@ Input read_input(const InputArrays& a) {
     std::vector<int> markers;
     if (given(a.segment_markers)) markers = to_markers(a.segment_markers, "segment_markers", rows);
     in.pslg.segments.resize(rows);
-    for (std::size_t i = 0; i < rows; ++i) in.pslg.segments[i] = {s[2 * i], s[2 * i + 1], markers.empty() ? 0 : markers[i]};
+    for (std::size_t i = 0; i < rows; ++i)
+      in.pslg.segments[i] = {s[2 * i], s[2 * i + 1], markers.empty() ? 0 : markers[i]};
   } else if (given(a.segment_markers)) {
     throw py::value_error("segment_markers: given without segments");
   }
@@ -276,7 +283,8 @@ Input read_input(const InputArrays& a) {
       in.num_triangle_attributes = at.v.empty() ? 0 : at.cols;
       in.triangle_attributes = std::move(at.v);
     }
-    if (given(a.triangle_max_area)) in.triangle_max_area = to_doubles(a.triangle_max_area, "triangle_max_area", 1, rows).v;
+    if (given(a.triangle_max_area))
+      in.triangle_max_area = to_doubles(a.triangle_max_area, "triangle_max_area", 1, rows).v;
   } else if (given(a.triangle_attributes) || given(a.triangle_max_area)) {
     throw py::value_error(std::string(given(a.triangle_attributes) ? "triangle_attributes" : "triangle_max_area") +
                           ": given without triangles");
@@ -286,48 +294,87 @@ Input read_input(const InputArrays& a) {
 
 // Keys triangulate() reads from a dict, and keys of its own output that it
 // ignores (so a result can be passed back in, as with Triangle's 'r').
-constexpr std::string_view kInputKeys[] = {"vertices", "vertex_markers", "vertex_attributes", "segments",
-                                           "segment_markers", "holes", "regions", "triangles",
-                                           "triangle_attributes", "triangle_max_area"};
+constexpr std::string_view kInputKeys[] = {
+    "vertices", "vertex_markers", "vertex_attributes",   "segments",         "segment_markers", "holes",
+    "regions",  "triangles",      "triangle_attributes", "triangle_max_area"};
 constexpr std::string_view kIgnoredKeys[] = {"edges", "edge_markers", "neighbors", "stats"};
 
 InputArrays arrays_from_dict(const py::dict& d) {
   for (auto item : d) {
     if (!py::isinstance<py::str>(item.first)) throw py::value_error("dict keys must be strings");
     const std::string key = item.first.cast<std::string>();
-    const auto known = [&](const auto& list) { return std::find(std::begin(list), std::end(list), key) != std::end(list); };
+    const auto known = [&](const auto& list) {
+      return std::find(std::begin(list), std::end(list), key) != std::end(list);
+    };
     if (!known(kInputKeys) && !known(kIgnoredKeys))
       throw py::value_error("unknown key '" + key +
                             "' (known: vertices, vertex_markers, vertex_attributes, segments, segment_markers, holes, "
                             "regions, triangles, triangle_attributes, triangle_max_area)");
   }
   auto get = [&](const char* k) -> py::handle { return d.contains(k) ? py::handle(d[k]) : py::handle(); };
-  return {get("vertices"), get("vertex_markers"), get("vertex_attributes"), get("segments"), get("segment_markers"),
-          get("holes"), get("regions"), get("triangles"), get("triangle_attributes"), get("triangle_max_area")};
+  return {get("vertices"),         get("vertex_markers"),  get("vertex_attributes"),
+          get("segments"),         get("segment_markers"), get("holes"),
+          get("regions"),          get("triangles"),       get("triangle_attributes"),
+          get("triangle_max_area")};
 }
 
 // ---------------------------------------------------------------------------
 // Options
 
 // Long options that make sense without files (the rest name outputs).
-constexpr std::string_view kLongOptions[] = {
-    "--cdt", "--fill", "--strict", "--steiner", "--encroachment", "--order", "--time-limit", "--min-angle",
-    "--max-area", "--steiner-budget", "--quality", "--regional-area", "--conforming-delaunay",
-    "--no-boundary-steiner", "--second-order", "--convex-hull", "--regional-attributes", "--ignore-holes",
-    "--jettison", "--edges", "--neighbors", "--check", "--quiet", "--verbose", "--zero-based", "--poly", "--refine",
-    "--no-markers", "--no-poly", "--no-iteration", "--incremental", "--sweepline", "--vertical-cuts", "--no-exact",
-    "--split-segments"};
+constexpr std::string_view kLongOptions[] = {"--cdt",
+                                             "--fill",
+                                             "--strict",
+                                             "--steiner",
+                                             "--encroachment",
+                                             "--order",
+                                             "--time-limit",
+                                             "--min-angle",
+                                             "--max-area",
+                                             "--steiner-budget",
+                                             "--quality",
+                                             "--regional-area",
+                                             "--conforming-delaunay",
+                                             "--no-boundary-steiner",
+                                             "--second-order",
+                                             "--convex-hull",
+                                             "--regional-attributes",
+                                             "--ignore-holes",
+                                             "--jettison",
+                                             "--edges",
+                                             "--neighbors",
+                                             "--check",
+                                             "--quiet",
+                                             "--verbose",
+                                             "--zero-based",
+                                             "--poly",
+                                             "--refine",
+                                             "--no-markers",
+                                             "--no-poly",
+                                             "--no-iteration",
+                                             "--incremental",
+                                             "--sweepline",
+                                             "--vertical-cuts",
+                                             "--no-exact",
+                                             "--split-segments"};
 
 // Triangle switches that are about files or need a compiled-in function.
 std::optional<std::string> refused_switch(char c) {
   switch (c) {
-    case 'N': return "-N (no .node file) would drop the vertices; there are no files here";
-    case 'E': return "-E (no .ele file) would drop the triangles; there are no files here";
-    case 'g': return "-g writes an .off file: use deltamesh.write(mesh, 'out.off')";
-    case 'v': return "-v (Voronoi diagram): use deltamesh.voronoi(vertices)";
-    case 'h': return "-h prints the command line help: see help(deltamesh.triangulate)";
-    case 'u': return "-u (user size function): pass max_area_fn=f(x, y) to the keyword form of deltamesh.triangulate";
-    default: return std::nullopt;
+    case 'N':
+      return "-N (no .node file) would drop the vertices; there are no files here";
+    case 'E':
+      return "-E (no .ele file) would drop the triangles; there are no files here";
+    case 'g':
+      return "-g writes an .off file: use deltamesh.write(mesh, 'out.off')";
+    case 'v':
+      return "-v (Voronoi diagram): use deltamesh.voronoi(vertices)";
+    case 'h':
+      return "-h prints the command line help: see help(deltamesh.triangulate)";
+    case 'u':
+      return "-u (user size function): pass max_area_fn=f(x, y) to the keyword form of deltamesh.triangulate";
+    default:
+      return std::nullopt;
   }
 }
 
@@ -346,7 +393,9 @@ Options parse_switches(const std::string& opts) {
       if (tok.rfind("--", 0) == 0) {
         const std::string name = tok.substr(0, tok.find('='));
         if (std::find(std::begin(kLongOptions), std::end(kLongOptions), name) == std::end(kLongOptions))
-          throw py::value_error("option " + name + " in '" + opts + "' is not available in deltamesh.triangulate (it names an output file or does not exist)");
+          throw py::value_error(
+              "option " + name + " in '" + opts +
+              "' is not available in deltamesh.triangulate (it names an output file or does not exist)");
       } else {
         if (tok[0] == '-') tok.erase(0, 1);
         if (tok.empty()) {
@@ -392,9 +441,12 @@ struct KeywordOptions {
   void value(const char* kw, py::handle v, const char* opt) {
     if (!given(v)) return;
     std::string text;
-    if (py::isinstance<py::str>(v)) text = v.cast<std::string>();
-    else if (py::isinstance<py::bool_>(v)) throw py::value_error(std::string(kw) + ": expected a number or a string, got a bool");
-    else if (py::isinstance<py::int_>(v)) text = py::str(v).cast<std::string>();
+    if (py::isinstance<py::str>(v))
+      text = v.cast<std::string>();
+    else if (py::isinstance<py::bool_>(v))
+      throw py::value_error(std::string(kw) + ": expected a number or a string, got a bool");
+    else if (py::isinstance<py::int_>(v))
+      text = py::str(v).cast<std::string>();
     else {
       try {
         text = number_text(v.cast<double>());
@@ -488,8 +540,8 @@ struct SizeCallback {
         const double v = PyFloat_AsDouble(r.ptr());  // TypeError for a non-number
         if (v == -1.0 && PyErr_Occurred()) throw py::error_already_set();
         if (!std::isfinite(v)) {
-          bad_value = std::string(name) + " returned " + number_text(v) + " at (" + number_text(x) + ", " + number_text(y) +
-                      "); it must return a finite area or length (<= 0: no bound)";
+          bad_value = std::string(name) + " returned " + number_text(v) + " at (" + number_text(x) + ", " +
+                      number_text(y) + "); it must return a finite area or length (<= 0: no bound)";
           return -1.0;
         }
         return v;
@@ -552,7 +604,8 @@ void run_pipeline(Input& in, const Options& o, dm::RefineOptions* ropt, RunResul
     rb.method = o.cdt_method;
     rb.strict = o.strict;
     dm::InsertSegmentsStats ins;
-    res.mesh = dm::mesh_from_triangles(nodes, in.triangles, in.num_triangle_attributes, in.triangle_attributes, rb, &ins);
+    res.mesh =
+        dm::mesh_from_triangles(nodes, in.triangles, in.num_triangle_attributes, in.triangle_attributes, rb, &ins);
     res.stats.input_vertices = nodes.points.size();
     res.stats.input_segments = nodes.segments.size();
     if (o.poly) {
@@ -572,7 +625,8 @@ void run_pipeline(Input& in, const Options& o, dm::RefineOptions* ropt, RunResul
       dm::carve_mesh(res.mesh, seeds, dopt, &res.stats.domain);
       if (res.stats.domain.triangles_removed) dm::finish_vertex_markers(res.mesh);
       if (res.stats.domain.holes_ignored)
-        res.stats.warnings.push_back(std::to_string(res.stats.domain.holes_ignored) + " hole point(s) ignored (on a vertex or on a segment)");
+        res.stats.warnings.push_back(std::to_string(res.stats.domain.holes_ignored) +
+                                     " hole point(s) ignored (on a vertex or on a segment)");
     }
     if (o.convex_hull)
       for (dm::HalfEdgeId e = 0; e < res.mesh.triangle_vertices().size(); ++e)
@@ -652,7 +706,8 @@ py::dict mesh_dict(const dm::Mesh& mesh, const Options& o, const Input& in, cons
     if (index[t] == dm::kNone) continue;
     for (const dm::VertexId v : mesh.triangle(t)) tris.push_back(static_cast<std::int32_t>(v));
     if (corners == 6)
-      for (std::size_t k = 0; k < 3; ++k) tris.push_back(static_cast<std::int32_t>(res.midside[3 * std::size_t{t} + k]));
+      for (std::size_t k = 0; k < 3; ++k)
+        tris.push_back(static_cast<std::int32_t>(res.midside[3 * std::size_t{t} + k]));
     for (std::size_t k = 0; k < na; ++k) tattr.push_back(mesh.triangle_attributes()[t * na + k]);
     if (o.neighbors)
       for (dm::HalfEdgeId i = 0; i < 3; ++i) {
@@ -793,7 +848,8 @@ py::dict run(Input in, const Options& o, py::object max_area_fn, py::object max_
   if (o.refine && !in.has_triangles)
     throw py::value_error("switch -r refines a mesh: the input needs 'triangles' (and 'vertices')");
   if (o.refine && o.area_from_regions && in.triangle_max_area.empty())
-    throw py::value_error("switches -r with -a and no number read per-triangle bounds: the input needs 'triangle_max_area'");
+    throw py::value_error(
+        "switches -r with -a and no number read per-triangle bounds: the input needs 'triangle_max_area'");
   std::optional<dm::RefineOptions> ropt;
   if (wants_refinement(o, given(area.fn) || given(edge.fn))) {
     ropt = refine_options(o);
@@ -820,7 +876,8 @@ py::dict run(Input in, const Options& o, py::object max_area_fn, py::object max_
     for (const std::string& w : res.stats.warnings)
       if (PyErr_WarnEx(PyExc_UserWarning, ("deltamesh: " + w).c_str(), 2) < 0) throw py::error_already_set();
     if (res.refined && !res.stats.refine.complete) {
-      const std::string msg = "deltamesh: refinement stopped before the requested quality: " + res.stats.refine.summary();
+      const std::string msg =
+          "deltamesh: refinement stopped before the requested quality: " + res.stats.refine.summary();
       if (PyErr_WarnEx(PyExc_UserWarning, msg.c_str(), 2) < 0) throw py::error_already_set();
     }
   }
@@ -828,7 +885,8 @@ py::dict run(Input in, const Options& o, py::object max_area_fn, py::object max_
     py::print("deltamesh:", res.mesh.num_vertices(), "vertices,", res.mesh.num_triangles(), "triangles in",
               res.seconds * 1e3, "ms", py::arg("file") = py::module_::import("sys").attr("stderr"));
     if (res.refined)
-      py::print("deltamesh: refine:", res.stats.refine.summary(), py::arg("file") = py::module_::import("sys").attr("stderr"));
+      py::print("deltamesh: refine:", res.stats.refine.summary(),
+                py::arg("file") = py::module_::import("sys").attr("stderr"));
   }
   return out;
 }
@@ -836,7 +894,8 @@ py::dict run(Input in, const Options& o, py::object max_area_fn, py::object max_
 // ---------------------------------------------------------------------------
 // Python entry points
 
-py::dict triangulate_dict(const py::dict& tri, const std::string& opts, py::object max_area_fn, py::object max_edge_fn) {
+py::dict triangulate_dict(const py::dict& tri, const std::string& opts, py::object max_area_fn,
+                          py::object max_edge_fn) {
   const Options o = parse_switches(opts);
   return run(read_input(arrays_from_dict(tri)), o, std::move(max_area_fn), std::move(max_edge_fn));
 }
@@ -849,8 +908,8 @@ py::dict triangulate_kw(py::object vertices, py::object segments, py::object hol
                         const std::string& segment_splitting, bool convex_hull, bool regional_attributes,
                         bool ignore_holes, const std::string& fill, const std::string& cdt, bool strict,
                         const std::string& steiner, const std::string& encroachment, const std::string& order,
-                        py::object time_limit, bool jettison, bool second_order, bool edges, bool neighbors,
-                        bool check, bool markers, bool quiet) {
+                        py::object time_limit, bool jettison, bool second_order, bool edges, bool neighbors, bool check,
+                        bool markers, bool quiet) {
   if (py::isinstance<py::dict>(vertices))
     throw py::value_error("vertices: got a dict; for Triangle's form call triangulate(dict, 'switches')");
   KeywordOptions k;
@@ -861,10 +920,12 @@ py::dict triangulate_kw(py::object vertices, py::object segments, py::object hol
   k.flag("regional_area", regional_area, "--regional-area");
   k.value("max_steiner", max_steiner, "--steiner-budget");
   k.flag("conforming_delaunay", conforming_delaunay, "--conforming-delaunay");
-  if (segment_splitting == "interior" || segment_splitting == "none") k.flag("segment_splitting", true, "--no-boundary-steiner");
+  if (segment_splitting == "interior" || segment_splitting == "none")
+    k.flag("segment_splitting", true, "--no-boundary-steiner");
   if (segment_splitting == "none") k.flag("segment_splitting", true, "--no-boundary-steiner");
   if (segment_splitting != "all" && segment_splitting != "interior" && segment_splitting != "none")
-    throw py::value_error("segment_splitting: '" + segment_splitting + "' must be 'all', 'interior' (Triangle's -Y) or 'none' (-YY)");
+    throw py::value_error("segment_splitting: '" + segment_splitting +
+                          "' must be 'all', 'interior' (Triangle's -Y) or 'none' (-YY)");
   k.flag("convex_hull", convex_hull, "--convex-hull");
   k.flag("regional_attributes", regional_attributes, "--regional-attributes");
   k.flag("ignore_holes", ignore_holes, "--ignore-holes");
@@ -883,8 +944,8 @@ py::dict triangulate_kw(py::object vertices, py::object segments, py::object hol
   k.flag("markers", !markers, "--no-markers");
   k.flag("quiet", quiet, "--quiet");
   const Options o = k.parse();
-  const InputArrays a{vertices, vertex_markers, vertex_attributes, segments, segment_markers, holes, regions,
-                      triangles, triangle_attributes, triangle_max_area};
+  const InputArrays a{vertices, vertex_markers, vertex_attributes,   segments,         segment_markers, holes,
+                      regions,  triangles,      triangle_attributes, triangle_max_area};
   return run(read_input(a), o, std::move(max_area_fn), std::move(max_edge_fn));
 }
 
@@ -910,8 +971,9 @@ Rebuilt rebuild(const py::dict& tri, bool with_segments) {
     const dm::Point& s = r.nodes.points[in.triangles[3 * t + 2]];
     const double o = dm::orient2d(p, q, s);
     if (o <= 0 && r.orientation_problems.size() < 20)
-      r.orientation_problems.push_back("triangle " + std::to_string(t) + " (" + std::to_string(in.triangles[3 * t]) + ", " +
-                                       std::to_string(in.triangles[3 * t + 1]) + ", " + std::to_string(in.triangles[3 * t + 2]) +
+      r.orientation_problems.push_back("triangle " + std::to_string(t) + " (" + std::to_string(in.triangles[3 * t]) +
+                                       ", " + std::to_string(in.triangles[3 * t + 1]) + ", " +
+                                       std::to_string(in.triangles[3 * t + 2]) +
                                        (o < 0 ? ") is clockwise" : ") is degenerate"));
   }
   if (!in.midside.empty()) dm::drop_midpoint_nodes(r.nodes, in.triangles, in.midside);
@@ -933,7 +995,8 @@ py::dict check_dict(const py::dict& tri, bool delaunay, bool convex_hull, bool s
   dm::CheckReport rep;
   if (problems.empty()) {
     if (r.inserted.inserted || r.inserted.vertices_added)
-      problems.push_back(std::to_string(r.inserted.inserted) + " segment(s) are not edges or chains of edges of the triangles");
+      problems.push_back(std::to_string(r.inserted.inserted) +
+                         " segment(s) are not edges or chains of edges of the triangles");
     dm::CheckOptions co;
     co.delaunay = delaunay;
     co.convex_hull = convex_hull;
@@ -953,7 +1016,8 @@ py::dict check_dict(const py::dict& tri, bool delaunay, bool convex_hull, bool s
   d["edges"] = rep.edges;
   d["vertices_used"] = rep.vertices_used;
   d["segments_checked"] = rep.segments_checked;
-  d["summary"] = problems.empty() ? rep.summary() : std::to_string(problems.size()) + " problem(s): " + problems.front();
+  d["summary"] =
+      problems.empty() ? rep.summary() : std::to_string(problems.size()) + " problem(s): " + problems.front();
   return d;
 }
 
@@ -1047,7 +1111,8 @@ py::dict read_file(const std::string& path) {
   const std::string node = base + ".node", ele = base + ".ele", poly = base + ".poly";
   if (!fs::exists(node)) {
     if (base == path && fs::exists(poly)) return read_file(poly);
-    throw dm::IoError("cannot open '" + node + "'" + (base == path ? " (read takes FILE.node, FILE.poly, FILE.ele, FILE or FILE.geojson)" : ""));
+    throw dm::IoError("cannot open '" + node + "'" +
+                      (base == path ? " (read takes FILE.node, FILE.poly, FILE.ele, FILE or FILE.geojson)" : ""));
   }
   dm::Pslg p;
   dm::EleData e;
@@ -1223,7 +1288,8 @@ max_area_fn(x, y) / max_edge_fn(x, y): size functions evaluated at triangle
 centroids (<= 0: no bound there); they refine like max_area.)");
 
   m.def("delaunay", &delaunay_triangles, py::arg("vertices"),
-        "Delaunay triangulation of points: the (M, 3) int32 triangles (counter-clockwise) of triangulate({'vertices': v}).");
+        "Delaunay triangulation of points: the (M, 3) int32 triangles (counter-clockwise) of triangulate({'vertices': "
+        "v}).");
   m.def("convex_hull", &hull_segments, py::arg("vertices"),
         "Convex hull edges of points as (H, 2) int32 vertex pairs, counter-clockwise around the hull (points on "
         "a hull edge split it).");
