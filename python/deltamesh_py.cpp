@@ -721,7 +721,7 @@ py::dict mesh_dict(const dm::Mesh& mesh, const Options& o, const Input& in, cons
   if (o.neighbors) out["neighbors"] = array_2d(neigh, 3);
 
   // Edges once each; segments are the constrained ones.
-  const bool want_segments = o.poly || o.convex_hull || (o.refine && in.has_segments);
+  const bool want_segments = o.poly || o.convex_hull;
   std::vector<std::int32_t> seg, seg_mk, edges, edge_mk;
   for (dm::TriId t = 0; t < slots; ++t) {
     if (index[t] == dm::kNone) continue;

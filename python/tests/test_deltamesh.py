@@ -313,6 +313,62 @@ class RandomInputs(unittest.TestCase):
                                  r["below_budget"] + r["below_precision"])
 
 
+class Garbage(unittest.TestCase):
+    def test_random_malformed_inputs_raise_or_validate(self):
+        """Seeded random shapes, dtypes and values (NaN, huge, negative indices,
+        ragged lists, strings): each call returns a valid mesh or raises a
+        ValueError / deltamesh.Error; none crashes."""
+        rng = np.random.default_rng(5)
+
+        def junk():
+            kind = rng.integers(0, 9)
+            n = int(rng.integers(0, 6))
+            if kind == 0:
+                return rng.random((n, int(rng.integers(0, 4))))
+            if kind == 1:
+                return rng.integers(-3, 8, size=(n, int(rng.integers(1, 4))))
+            if kind == 2:
+                return [[1, 2], [3]]
+            if kind == 3:
+                return "abc"
+            if kind == 4:
+                return np.array([[np.nan, 1.0], [1e308, -1e308]])
+            if kind == 5:
+                return rng.integers(0, 4, size=n).astype(np.uint8)
+            if kind == 6:
+                return None
+            if kind == 7:
+                return np.zeros((2, 2, 2))
+            return rng.random((n, 2)) * 10.0 ** rng.integers(-300, 300)
+
+        keys = ["vertices", "vertex_markers", "vertex_attributes", "segments", "segment_markers", "holes",
+                "regions", "triangles", "triangle_attributes", "triangle_max_area"]
+        outcomes = {"ok": 0, "error": 0}
+        for _ in range(300):
+            tri = {"vertices": rng.integers(0, 5, size=(int(rng.integers(0, 8)), 2)).astype(float)}
+            for k in rng.choice(keys, size=int(rng.integers(0, 4)), replace=False):
+                value = junk()
+                if value is not None:
+                    tri[str(k)] = value
+            opts = str(rng.choice(["", "p", "pq", "pc", "pA", "r", "rp", "pqa0.5", "pcj", "pYYq"]))
+            try:
+                with warnings.catch_warnings():
+                    warnings.simplefilter("ignore")
+                    mesh = deltamesh.triangulate(tri, opts)
+            except (ValueError, deltamesh.Error):
+                outcomes["error"] += 1
+                continue
+            outcomes["ok"] += 1
+            deltamesh.validate(mesh, delaunay=False)
+            for fn in (deltamesh.check, deltamesh.quality):
+                try:
+                    fn(dict(tri, triangles=tri.get("triangles", mesh["triangles"])))
+                except (ValueError, deltamesh.Error):
+                    pass
+        self.assertGreater(outcomes["ok"], 20)
+        self.assertGreater(outcomes["error"], 20)
+
+
 class DictAndKeywords(unittest.TestCase):
     def assert_same(self, a, b):
         self.assertEqual(set(a) - {"stats"}, set(b) - {"stats"})
