@@ -39,9 +39,10 @@ check-long: deps build
 # inputs (tests honour it, see docs/robustness.md); "long" tests are skipped.
 # (gcc's -Wmaybe-uninitialized gives false positives under ASan, in <regex>.)
 # No Python bindings there: a sanitized extension module cannot be loaded into
-# an ordinary python (the ASan runtime has to be first in the process), so
-# they are tested in the normal build only (python/CMakeLists.txt skips them
-# in any DELTAMESH_SANITIZE build too).
+# an ordinary python (the ASan runtime has to be first in the process; only
+# LD_PRELOAD gets it there, see docs/python.md for that manual run), so ctest
+# runs them in the normal build only (python/CMakeLists.txt skips them in any
+# DELTAMESH_SANITIZE build too).
 SAN_FLAGS := -DCMAKE_BUILD_TYPE=RelWithDebInfo "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O2 -g1 -Wno-maybe-uninitialized" \
              -DDELTAMESH_WERROR=$(WERROR) -DDELTAMESH_PYTHON=OFF
 test-sanitize: deps
