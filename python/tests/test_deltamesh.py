@@ -1,0 +1,613 @@
+"""Tests of the Python bindings (stdlib unittest; ctest runs them with the
+interpreter the module was built for and PYTHONPATH=<build>/python).
+
+Every mesh produced here goes through deltamesh.validate (the library's exact
+validator, on the arrays returned), and properties are asserted as bounds.
+"""
+import contextlib
+import io
+import math
+import os
+import re
+import tempfile
+import threading
+import time
+import unittest
+import warnings
+
+import numpy as np
+
+import deltamesh
+
+ARRAY_DTYPES = {
+    "vertices": np.float64, "vertex_markers": np.int32, "vertex_attributes": np.float64,
+    "triangles": np.int32, "triangle_attributes": np.float64, "segments": np.int32,
+    "segment_markers": np.int32, "edges": np.int32, "edge_markers": np.int32, "neighbors": np.int32,
+    "holes": np.float64, "regions": np.float64,
+}
+
+
+def square_with_hole():
+    """Unit square with a 0.2 x 0.2 square hole in the middle; outer marker 5, hole marker 7."""
+    return dict(
+        vertices=np.array([[0, 0], [1, 0], [1, 1], [0, 1], [.4, .4], [.6, .4], [.6, .6], [.4, .6]], float),
+        segments=np.array([[0, 1], [1, 2], [2, 3], [3, 0], [4, 5], [5, 6], [6, 7], [7, 4]]),
+        segment_markers=np.array([5, 5, 5, 5, 7, 7, 7, 7]),
+        holes=np.array([[.5, .5]]),
+    )
+
+
+def two_regions():
+    """Unit square split at x = 0.5 by an interior segment; region seeds with attributes 1 and 2
+    and area bounds 0.01 and 0.05."""
+    return dict(
+        vertices=[[0, 0], [.5, 0], [1, 0], [1, 1], [.5, 1], [0, 1]],
+        segments=[[0, 1], [1, 2], [2, 3], [3, 4], [4, 5], [5, 0], [1, 4]],
+        regions=[[.25, .5, 1, .01], [.75, .5, 2, .05]],
+    )
+
+
+def areas(mesh):
+    v, t = mesh["vertices"], mesh["triangles"][:, :3]
+    a, b, c = v[t[:, 0]], v[t[:, 1]], v[t[:, 2]]
+    return 0.5 * ((b[:, 0] - a[:, 0]) * (c[:, 1] - a[:, 1]) - (b[:, 1] - a[:, 1]) * (c[:, 0] - a[:, 0]))
+
+
+def min_angles(mesh):
+    """Smallest angle of each triangle in degrees (law of cosines on edge vectors)."""
+    v, t = mesh["vertices"], mesh["triangles"][:, :3]
+    p = [v[t[:, k]] for k in range(3)]
+    out = np.full(len(t), 180.0)
+    for k in range(3):
+        u, w = p[(k + 1) % 3] - p[k], p[(k + 2) % 3] - p[k]
+        cos = (u * w).sum(1) / (np.linalg.norm(u, axis=1) * np.linalg.norm(w, axis=1))
+        out = np.minimum(out, np.degrees(np.arccos(np.clip(cos, -1, 1))))
+    return out
+
+
+def centroids(mesh):
+    v, t = mesh["vertices"], mesh["triangles"][:, :3]
+    return (v[t[:, 0]] + v[t[:, 1]] + v[t[:, 2]]) / 3
+
+
+def edge_set(pairs):
+    return {tuple(sorted(map(int, e))) for e in pairs}
+
+
+def quiet_triangulate(*args, **kwargs):
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # an unexpected warning fails the test
+        return deltamesh.triangulate(*args, **kwargs)
+
+
+class Shapes(unittest.TestCase):
+    def assert_layout(self, mesh):
+        for key, value in mesh.items():
+            if key == "stats":
+                self.assertIsInstance(value, dict)
+                continue
+            self.assertIsInstance(value, np.ndarray, key)
+            self.assertEqual(value.dtype, ARRAY_DTYPES[key], key)
+            self.assertEqual(value.ndim, 2, key)
+        n, m = len(mesh["vertices"]), len(mesh["triangles"])
+        self.assertEqual(mesh["vertices"].shape, (n, 2))
+        self.assertEqual(mesh["vertex_markers"].shape, (n, 1))
+        self.assertIn(mesh["triangles"].shape[1], (3, 6))
+        self.assertTrue(((mesh["triangles"] >= 0) & (mesh["triangles"] < n)).all())
+        if "triangle_attributes" in mesh:
+            self.assertEqual(len(mesh["triangle_attributes"]), m)
+        if "segments" in mesh:
+            self.assertEqual(mesh["segment_markers"].shape, (len(mesh["segments"]), 1))
+
+    def test_every_switch_output_has_triangle_layout(self):
+        mesh = quiet_triangulate(square_with_hole(), "pq25enA")
+        deltamesh.validate(mesh)
+        self.assert_layout(mesh)
+        for key in ("segments", "edges", "edge_markers", "neighbors", "holes"):
+            self.assertIn(key, mesh)
+        self.assertEqual(mesh["neighbors"].shape, mesh["triangles"].shape)
+
+    def test_delaunay_of_points_has_no_segments_and_euler_count(self):
+        rng = np.random.default_rng(7)
+        pts = rng.random((300, 2))
+        mesh = quiet_triangulate({"vertices": pts}, "n")
+        self.assert_layout(mesh)
+        self.assertNotIn("segments", mesh)
+        deltamesh.validate(mesh, convex_hull=True)
+        # Triangles of a Delaunay triangulation: 2n - 2 - h (h hull edges = -1 neighbours).
+        h = int((mesh["neighbors"] == -1).sum())
+        self.assertEqual(len(mesh["triangles"]), 2 * len(pts) - 2 - h)
+        np.testing.assert_array_equal(mesh["vertices"], pts)  # input vertices keep their ids
+
+    def test_neighbors_are_symmetric_and_edges_match_triangles(self):
+        mesh = quiet_triangulate(square_with_hole(), "pq30a0.02en")
+        deltamesh.validate(mesh)
+        t, nb = mesh["triangles"], mesh["neighbors"]
+        for i in range(len(t)):
+            for k in range(3):
+                j = nb[i, k]
+                if j < 0:
+                    continue
+                self.assertIn(i, nb[j])
+                # neighbour k lies across the edge opposite vertex k
+                shared = set(t[i]) - {t[i, k]}
+                self.assertEqual(shared, set(t[i]) & set(t[j]))
+        tri_edges = edge_set(np.vstack([t[:, [0, 1]], t[:, [1, 2]], t[:, [2, 0]]]))
+        self.assertEqual(edge_set(mesh["edges"]), tri_edges)
+        self.assertEqual(len(tri_edges), len(mesh["edges"]))  # each edge once
+        # The square with a hole is an annulus: V - E + F = 0 on the vertices used.
+        used = len(np.unique(t))
+        self.assertEqual(used - len(mesh["edges"]) + len(t), 0)
+        # Boundary edges (one triangle) are exactly the segments here.
+        self.assertEqual(int((nb == -1).sum()), len(mesh["segments"]))
+
+
+class Quality(unittest.TestCase):
+    def test_square_with_hole_q30_a(self):
+        mesh = quiet_triangulate(square_with_hole(), "pq30a0.01")
+        report = deltamesh.validate(mesh)
+        self.assertTrue(report["ok"])
+        self.assertEqual(report["segments_checked"], len(mesh["segments"]))
+        st = mesh["stats"]
+        self.assertTrue(st["complete"])
+        self.assertEqual(st["steiner_points"], len(mesh["vertices"]) - 8)
+        self.assertGreater(st["steiner_points"], 20)
+        # Angles: no input angle below 60 degrees here, so every triangle meets the bound.
+        self.assertGreaterEqual(min_angles(mesh).min(), 30 - 1e-9)
+        self.assertAlmostEqual(st["min_angle"], min_angles(mesh).min(), places=9)
+        a = areas(mesh)
+        self.assertTrue((a > 0).all())
+        self.assertLessEqual(a.max(), 0.01 * (1 + 1e-12))
+        self.assertAlmostEqual(a.sum(), 1 - 0.04, places=12)
+        # Nothing inside the hole; markers carried to every subsegment.
+        c = centroids(mesh)
+        self.assertFalse((np.abs(c - 0.5) < 0.1).all(axis=1).any())
+        s, sm = mesh["segments"], mesh["segment_markers"][:, 0]
+        v = mesh["vertices"]
+        on_outer = np.isin(v[s], [0.0, 1.0]).any(axis=2).all(axis=1)
+        self.assertEqual(set(sm[on_outer]), {5})
+        self.assertEqual(set(sm[~on_outer]), {7})
+        q = deltamesh.quality(mesh, min_angle=30, max_area=0.01)
+        self.assertEqual((q["below_angle"], q["above_area"]), (0, 0))
+        self.assertEqual(sum(q["angle_histogram"]), 3 * len(mesh["triangles"]))
+        # stats' angles (a cheaper pass) are the quality report's
+        self.assertAlmostEqual(st["min_angle"], q["min_angle"], places=12)
+        self.assertAlmostEqual(st["max_angle"], q["max_angle"], places=12)
+
+    def test_budget_stops_with_a_warning_and_a_valid_mesh(self):
+        with self.assertWarnsRegex(UserWarning, "Steiner budget"):
+            mesh = deltamesh.triangulate(square_with_hole(), "pq30S5")
+        deltamesh.validate(mesh)
+        self.assertFalse(mesh["stats"]["complete"])
+        self.assertTrue(mesh["stats"]["refine"]["budget_exhausted"])
+        self.assertLessEqual(mesh["stats"]["steiner_points"], 5)
+        # Q silences it.
+        quiet_triangulate(square_with_hole(), "pq30S5Q")
+
+    def test_size_function(self):
+        def f(x, y):
+            return 0.001 if x < 0.3 else 0.05
+        mesh = quiet_triangulate(square_with_hole(), "pq20", max_area_fn=f)
+        deltamesh.validate(mesh)
+        a, c = areas(mesh), centroids(mesh)
+        bound = np.where(c[:, 0] < 0.3, 0.001, 0.05)
+        self.assertTrue((a <= bound * (1 + 1e-9)).all())
+        self.assertGreater((c[:, 0] < 0.3).sum(), 300)  # about 0.3 / 0.001 triangles there
+        with self.assertRaises(ZeroDivisionError):  # the callback's own exception comes through
+            deltamesh.triangulate(square_with_hole(), "pq", max_area_fn=lambda x, y: 1 / 0)
+        with self.assertRaises(TypeError):
+            deltamesh.triangulate(square_with_hole(), "pq", max_area_fn=lambda x, y: "small")
+        with self.assertRaisesRegex(ValueError, "max_area_fn returned nan"):
+            deltamesh.triangulate(square_with_hole(), "pq", max_area_fn=lambda x, y: math.nan)
+
+    def test_refine_a_mesh_with_r(self):
+        coarse = quiet_triangulate(square_with_hole(), "pq30")
+        fine = quiet_triangulate(coarse, "rpq30a0.002")
+        deltamesh.validate(fine)
+        self.assertLessEqual(areas(fine).max(), 0.002 * (1 + 1e-12))
+        self.assertAlmostEqual(areas(fine).sum(), 0.96, places=12)
+        self.assertGreater(len(fine["triangles"]), 0.96 / 0.002)
+        # the coarse vertices keep their ids
+        np.testing.assert_array_equal(fine["vertices"][:len(coarse["vertices"])], coarse["vertices"])
+        with self.assertRaisesRegex(ValueError, "triangles"):
+            deltamesh.triangulate(square_with_hole(), "rq")
+
+    def test_second_order_midpoints(self):
+        mesh = quiet_triangulate(square_with_hole(), "pq30o2")
+        self.assertEqual(mesh["triangles"].shape[1], 6)
+        deltamesh.validate(mesh)
+        v, t = mesh["vertices"], mesh["triangles"]
+        for k in range(3):  # node 3 + k is the midpoint of the edge opposite corner k
+            mid = (v[t[:, (k + 1) % 3]] + v[t[:, (k + 2) % 3]]) / 2
+            np.testing.assert_allclose(v[t[:, 3 + k]], mid, rtol=0, atol=1e-15)
+
+    def test_conforming_delaunay_and_jettison(self):
+        pslg = square_with_hole()
+        pslg["vertices"] = np.vstack([pslg["vertices"], [[.45, .5], [.45, .5]]])  # a point in the hole, twice
+        mesh = quiet_triangulate(pslg, "pDj")
+        deltamesh.validate(mesh)
+        # -j drops the vertices in no triangle
+        self.assertEqual(len(np.unique(mesh["triangles"])), len(mesh["vertices"]))
+        # -D: Delaunay even across segments
+        deltamesh.validate({k: mesh[k] for k in ("vertices", "triangles")})
+
+
+class PointSets(unittest.TestCase):
+    """delaunay(), convex_hull() and voronoi(), the `triangle` package's helpers."""
+
+    def setUp(self):
+        # integer coordinates: the numpy orientation tests below are exact
+        self.pts = np.random.default_rng(11).integers(0, 1000, size=(200, 2)).astype(float)
+
+    def test_delaunay_is_triangulate_without_switches(self):
+        tris = deltamesh.delaunay(self.pts)
+        self.assertEqual((tris.dtype, tris.shape[1]), (np.int32, 3))
+        np.testing.assert_array_equal(tris, quiet_triangulate({"vertices": self.pts})["triangles"])
+        deltamesh.validate(dict(vertices=self.pts, triangles=tris), convex_hull=True)
+
+    def test_convex_hull_edges_enclose_every_point(self):
+        hull = deltamesh.convex_hull(self.pts)
+        p, q = self.pts[hull[:, 0]], self.pts[hull[:, 1]]
+        for x in self.pts:  # every point on the left of or on every hull edge
+            side = (q[:, 0] - p[:, 0]) * (x[1] - p[:, 1]) - (q[:, 1] - p[:, 1]) * (x[0] - p[:, 0])
+            self.assertTrue((side >= 0).all())
+        # one closed cycle: each hull vertex starts one edge and ends one
+        self.assertEqual(sorted(hull[:, 0]), sorted(hull[:, 1]))
+        nxt = dict(hull)
+        v, steps = hull[0, 0], 0
+        while True:
+            v, steps = nxt[v], steps + 1
+            if v == hull[0, 0]:
+                break
+        self.assertEqual(steps, len(hull))
+
+    def test_voronoi_is_the_dual(self):
+        tris = deltamesh.delaunay(self.pts)
+        vor = deltamesh.voronoi(self.pts)
+        self.assertEqual(len(vor["vertices"]), len(tris))
+        # each Voronoi vertex is equidistant from its triangle's corners
+        d = np.linalg.norm(self.pts[tris] - vor["vertices"][:, None, :], axis=2)
+        np.testing.assert_allclose(d, d[:, :1].repeat(3, axis=1), rtol=1e-9)
+        rays = vor["edges"][:, 1] == -1
+        n_edges = len(edge_set(np.vstack([tris[:, [0, 1]], tris[:, [1, 2]], tris[:, [2, 0]]])))
+        self.assertEqual(len(vor["edges"]), n_edges)
+        self.assertEqual(rays.sum(), len(deltamesh.convex_hull(self.pts)))
+        self.assertTrue((np.linalg.norm(vor["ray_directions"][rays], axis=1) > 0).all())
+        self.assertTrue((vor["ray_directions"][~rays] == 0).all())
+
+
+class RandomInputs(unittest.TestCase):
+    def test_seeded_random_pslgs(self):
+        """Random points with random (crossing) segments on a coarse grid, so that
+        collinear and duplicate points and segments through vertices occur; every
+        result validates, covers the hull and keeps the bounds."""
+        for seed in range(25):
+            with self.subTest(seed=seed):
+                rng = np.random.default_rng(seed)
+                n = int(rng.integers(3, 40))
+                pts = rng.integers(0, 8, size=(n, 2)).astype(float) * (10.0 ** rng.integers(-6, 7))
+                if len(np.unique(pts, axis=0)) < 3:
+                    continue
+                segs = rng.integers(0, n, size=(int(rng.integers(0, 15)), 2))
+                segs = segs[segs[:, 0] != segs[:, 1]]
+                try:
+                    mesh = deltamesh.triangulate(dict(vertices=pts, segments=segs), "pcq25Q")
+                except deltamesh.InputError as e:  # all points collinear
+                    self.assertIn("collinear", str(e))
+                    continue
+                deltamesh.validate(mesh)
+                self.assertGreater(len(mesh["triangles"]), 0)
+                a = areas(mesh)
+                self.assertTrue((a > 0).all())
+                # with -c the domain is the convex hull of the input points
+                lo, hi = pts.min(0), pts.max(0)
+                self.assertTrue(((mesh["vertices"] >= lo) & (mesh["vertices"] <= hi)).all())
+                np.testing.assert_array_equal(mesh["vertices"][:n], pts)
+                # the refiner's count of triangles below the bound is what the arrays show,
+                # and each of them has a reason (small input angle, precision, ...)
+                r, ma = mesh["stats"]["refine"], min_angles(mesh)
+                self.assertTrue(mesh["stats"]["complete"])
+                self.assertLessEqual((ma < 25 - 1e-9).sum(), r["below_bound"])
+                self.assertLessEqual(r["below_bound"], (ma < 25 + 1e-9).sum())
+                self.assertEqual(r["below_bound"], r["below_small_input_angle"] + r["below_segment_protected"] +
+                                 r["below_budget"] + r["below_precision"])
+
+
+class Garbage(unittest.TestCase):
+    def test_random_malformed_inputs_raise_or_validate(self):
+        """Seeded random shapes, dtypes and values (NaN, huge, negative indices,
+        ragged lists, strings): each call returns a valid mesh or raises a
+        ValueError / deltamesh.Error; none crashes."""
+        rng = np.random.default_rng(5)
+
+        def junk():
+            kind = rng.integers(0, 9)
+            n = int(rng.integers(0, 6))
+            if kind == 0:
+                return rng.random((n, int(rng.integers(0, 4))))
+            if kind == 1:
+                return rng.integers(-3, 8, size=(n, int(rng.integers(1, 4))))
+            if kind == 2:
+                return [[1, 2], [3]]
+            if kind == 3:
+                return "abc"
+            if kind == 4:
+                return np.array([[np.nan, 1.0], [1e308, -1e308]])
+            if kind == 5:
+                return rng.integers(0, 4, size=n).astype(np.uint8)
+            if kind == 6:
+                return None
+            if kind == 7:
+                return np.zeros((2, 2, 2))
+            return rng.random((n, 2)) * 10.0 ** rng.integers(-300, 300)
+
+        keys = ["vertices", "vertex_markers", "vertex_attributes", "segments", "segment_markers", "holes",
+                "regions", "triangles", "triangle_attributes", "triangle_max_area"]
+        outcomes = {"ok": 0, "error": 0}
+        for _ in range(300):
+            tri = {"vertices": rng.integers(0, 5, size=(int(rng.integers(0, 8)), 2)).astype(float)}
+            for k in rng.choice(keys, size=int(rng.integers(0, 4)), replace=False):
+                value = junk()
+                if value is not None:
+                    tri[str(k)] = value
+            opts = str(rng.choice(["", "p", "pq", "pc", "pA", "r", "rp", "pqa0.5", "pcj", "pYYq"]))
+            try:
+                with warnings.catch_warnings():
+                    warnings.simplefilter("ignore")
+                    mesh = deltamesh.triangulate(tri, opts)
+            except (ValueError, deltamesh.Error):
+                outcomes["error"] += 1
+                continue
+            outcomes["ok"] += 1
+            deltamesh.validate(mesh, delaunay=False)
+            for fn in (deltamesh.check, deltamesh.quality):
+                try:
+                    fn(dict(tri, triangles=tri.get("triangles", mesh["triangles"])))
+                except (ValueError, deltamesh.Error):
+                    pass
+        self.assertGreater(outcomes["ok"], 20)
+        self.assertGreater(outcomes["error"], 20)
+
+
+class DictAndKeywords(unittest.TestCase):
+    def assert_same(self, a, b):
+        self.assertEqual(set(a) - {"stats"}, set(b) - {"stats"})
+        for key in a:
+            if key != "stats":
+                np.testing.assert_array_equal(a[key], b[key], err_msg=key)
+
+    def test_forms_agree(self):
+        sq = square_with_hole()
+        self.assert_same(quiet_triangulate(sq, "pq30a0.01"),
+                         quiet_triangulate(sq["vertices"], sq["segments"], sq["holes"],
+                                           segment_markers=sq["segment_markers"], min_angle=30, max_area=0.01))
+        self.assert_same(quiet_triangulate({"vertices": sq["vertices"]}, "en"),
+                         quiet_triangulate(sq["vertices"], edges=True, neighbors=True))
+        r = two_regions()
+        self.assert_same(quiet_triangulate(r, "pq28aA --cdt=lawson --steiner=offcenter"),
+                         quiet_triangulate(r["vertices"], r["segments"], regions=r["regions"], min_angle=28,
+                                           regional_area=True, regional_attributes=True,
+                                           steiner="offcenter", cdt="lawson"))
+        # -YY: no Steiner points on segments, so the 28 degree bound is not reached (a result, not an error)
+        yy = deltamesh.triangulate(r, "pq28YYQ")
+        self.assert_same(yy, deltamesh.triangulate(r["vertices"], r["segments"], regions=r["regions"], min_angle=28,
+                                                   segment_splitting="none", quiet=True))
+        deltamesh.validate(yy)
+        self.assertEqual(edge_set(yy["segments"]), edge_set(r["segments"]))
+        # a leading '-' is allowed, and the result can be passed back in (stats etc. ignored)
+        self.assert_same(quiet_triangulate(sq, "-pc"), quiet_triangulate(sq, "pc"))
+        self.assert_same(quiet_triangulate(quiet_triangulate(sq, "pen"), "p"), quiet_triangulate(sq, "p"))
+
+    def test_regional_attributes_and_area_bounds(self):
+        r = two_regions()
+        mesh = quiet_triangulate(r, "pqaA")
+        deltamesh.validate(mesh)
+        attr, c, a = mesh["triangle_attributes"][:, 0], centroids(mesh), areas(mesh)
+        np.testing.assert_array_equal(attr, np.where(c[:, 0] < 0.5, 1.0, 2.0))
+        self.assertLessEqual(a[attr == 1].max(), 0.01 * (1 + 1e-12))
+        self.assertLessEqual(a[attr == 2].max(), 0.05 * (1 + 1e-12))
+        self.assertAlmostEqual(a[attr == 1].sum(), 0.5, places=12)
+        self.assertAlmostEqual(a[attr == 2].sum(), 0.5, places=12)
+        self.assertGreater((attr == 1).sum(), (attr == 2).sum())
+        # O ignores the hole; without p there are no regions or holes
+        sq = square_with_hole()
+        self.assertAlmostEqual(areas(quiet_triangulate(sq, "pO")).sum(), 1.0, places=12)
+        self.assertNotIn("triangle_attributes", quiet_triangulate(r, "A"))
+
+    def test_threads_give_the_same_mesh(self):
+        sq = square_with_hole()
+        expected = quiet_triangulate(sq, "pq30a0.001")
+        results = [None] * 4
+
+        def work(i):
+            results[i] = deltamesh.triangulate(sq, "pq30a0.001")
+        threads = [threading.Thread(target=work, args=(i,)) for i in range(4)]
+        for th in threads:
+            th.start()
+        for th in threads:
+            th.join()
+        for r in results:
+            deltamesh.validate(r)
+            self.assert_same(r, expected)
+
+
+class Gil(unittest.TestCase):
+    def test_gil_is_released_while_meshing(self):
+        """The main thread runs Python while another thread meshes (~0.3 s): with
+        the GIL held it could not return from wait() before the meshing ended."""
+        started = threading.Event()
+        times = {}
+
+        def mesh():
+            pslg = square_with_hole()
+            times["start"] = time.perf_counter()
+            started.set()
+            m = deltamesh.triangulate(pslg, "pq30a0.000004Q")
+            times["end"] = time.perf_counter()
+            times["triangles"] = len(m["triangles"])
+        th = threading.Thread(target=mesh)
+        th.start()
+        started.wait()
+        times["main"] = time.perf_counter()
+        th.join()
+        self.assertGreater(times["triangles"], 200000)
+        # held GIL: main resumes as the call returns (measured: at 99.7% of it)
+        self.assertLess(times["main"] - times["start"], 0.5 * (times["end"] - times["start"]))
+
+
+class Errors(unittest.TestCase):
+    def test_bad_arrays_name_the_argument(self):
+        cases = [
+            (dict(vertices=np.zeros((4, 3))), "vertices: expected an array of shape \\(n, 2\\)"),
+            (dict(vertices=[[0, 0], [1, math.nan], [0, 1]]), "vertices: row 1 holds nan"),
+            (dict(vertices=[[0, 0], [1, 0], [0, 1]], segments=[[0, 3]]), "segments: index 3 .* out of range"),
+            (dict(vertices=[[0, 0], [1, 0], [0, 1]], segments=[[0, -1]]), "segments: index -1"),
+            (dict(vertices=[[0, 0], [1, 0], [0, 1]], segments=[[0, 1.0]]), "segments: expected integers"),
+            (dict(vertices=[[0, 0], [1, 0], [0, 1]], vertex_markers=[1, 2]), "vertex_markers: has 2 rows, expected 3"),
+            (dict(vertices=[["a", "b"]]), "vertices: expected numbers"),
+            (dict(vertices=[[0, 0], [1, 0], [0, 1]], holes=[[math.inf, 0]]), "holes: row 0 holds inf"),
+            (dict(vertices=[[0, 0], [1, 0], [0, 1]], vertice=[]), "unknown key 'vertice'"),
+            (dict(segments=[[0, 1]]), "vertices: required"),
+            (dict(vertices=np.zeros((5, 0))), "vertices: expected an array of shape \\(n, 2\\), got shape \\(5, 0\\)"),
+            (dict(vertices=np.float64(1)), "vertices: expected an array of shape"),
+            (dict(vertices=[[0, 0], [1, 0], [0, 1]], vertex_attributes=[]), "vertex_attributes: has 0 rows, expected 3"),
+        ]
+        for tri, message in cases:
+            with self.subTest(message=message), self.assertRaisesRegex(ValueError, message):
+                deltamesh.triangulate(tri, "p")
+
+    def test_switches(self):
+        sq = square_with_hole()
+        for opts, message in [("pk", "unknown switch -k"), ("pq30x", "unknown switch -x"),
+                              ("pa-1", "unknown switch --"), ("p1", "does not follow a switch"),
+                              ("pN", "-N"), ("pu", "max_area_fn"), ("p --svg=x.svg", "--svg"),
+                              ("p --cdt", "needs a value"), ("p --cdt=x", "fast, ct, lawson or lifting")]:
+            with self.subTest(opts=opts), self.assertRaisesRegex(ValueError, message):
+                deltamesh.triangulate(sq, opts)
+        for kw, message in [(dict(min_angle="x"), "min_angle"), (dict(max_area=-1), "max_area: .*positive"),
+                            (dict(cdt="foo"), "cdt: "), (dict(segment_splitting="some"), "segment_splitting")]:
+            with self.subTest(kw=kw), self.assertRaisesRegex(ValueError, message):
+                deltamesh.triangulate(sq["vertices"], sq["segments"], **kw)
+
+    def test_library_errors_are_typed(self):
+        with self.assertRaisesRegex(deltamesh.InputError, "collinear") as cm:
+            deltamesh.triangulate(dict(vertices=[[0, 0], [1, 0], [2, 0]]))
+        self.assertIsInstance(cm.exception, ValueError)
+        self.assertIsInstance(cm.exception, deltamesh.Error)
+        with self.assertRaises(deltamesh.InputError):
+            deltamesh.triangulate(dict(vertices=np.zeros((0, 2))))
+        # zero attribute columns are fine
+        mesh = quiet_triangulate(dict(vertices=[[0, 0], [1, 0], [0, 1]], vertex_attributes=np.zeros((3, 0))))
+        self.assertNotIn("vertex_attributes", mesh)
+        deltamesh.validate(mesh)
+        crossing = dict(vertices=[[0, 0], [2, 2], [0, 2], [2, 0]], segments=[[0, 1], [2, 3]])
+        with self.assertRaises(deltamesh.IntersectingSegments) as cm:
+            deltamesh.triangulate(crossing, "p --strict")
+        self.assertEqual((cm.exception.first, cm.exception.second), (0, 1))
+        # without --strict the crossing gets a vertex
+        mesh = quiet_triangulate(crossing, "pc")
+        deltamesh.validate(mesh)
+        self.assertTrue((np.abs(mesh["vertices"] - [1, 1]).max(axis=1) < 1e-15).any())
+
+    def test_check_finds_broken_meshes(self):
+        good = quiet_triangulate(dict(vertices=[[0, 0], [1, 0], [1, 1], [0, 1.2]]))
+        self.assertTrue(deltamesh.check(good)["ok"])
+        flipped = dict(good, triangles=good["triangles"][:, ::-1].copy())
+        report = deltamesh.check(flipped)
+        self.assertFalse(report["ok"])
+        self.assertRegex(report["problems"][0], "clockwise")
+        # The other diagonal of a quadrilateral whose Delaunay diagonal is unique.
+        t = good["triangles"]
+        d = set(t[0]) & set(t[1])
+        other = sorted(set(range(4)) - d)
+        a, b = sorted(d)
+        bad = dict(vertices=good["vertices"],
+                   triangles=np.array([[other[0], other[1], a], [other[1], other[0], b]]))
+        for tri in bad["triangles"]:  # orient counter-clockwise
+            p = good["vertices"][tri]
+            if (p[1, 0] - p[0, 0]) * (p[2, 1] - p[0, 1]) - (p[1, 1] - p[0, 1]) * (p[2, 0] - p[0, 0]) < 0:
+                tri[[1, 2]] = tri[[2, 1]]
+        report = deltamesh.check(bad)
+        self.assertFalse(report["ok"])
+        self.assertTrue(any("Delaunay" in p for p in report["problems"]), report["problems"])
+        self.assertTrue(deltamesh.check(bad, delaunay=False)["ok"])
+        with self.assertRaises(deltamesh.CheckError) as cm:
+            deltamesh.validate(bad)
+        self.assertTrue(cm.exception.problems)
+        # overlapping triangles are reported, not a crash
+        overlap = dict(vertices=[[0, 0], [1, 0], [0, 1], [1, 1]], triangles=[[0, 1, 2], [0, 1, 3]])
+        self.assertFalse(deltamesh.check(overlap)["ok"])
+        # a segment that is not an edge
+        seg = dict(good, segments=[[other[0], other[1]]])
+        self.assertFalse(deltamesh.check(seg)["ok"])
+
+
+class Files(unittest.TestCase):
+    def test_triangle_files_round_trip(self):
+        mesh = quiet_triangulate(two_regions(), "pq30a0.02A")
+        deltamesh.validate(mesh)
+        with tempfile.TemporaryDirectory() as d:
+            base = os.path.join(d, "m")
+            for ext in (".node", ".ele", ".poly"):
+                deltamesh.write(mesh, base + ext)
+            back = deltamesh.read(base + ".node")
+            deltamesh.validate(back)
+            np.testing.assert_array_equal(back["vertices"], mesh["vertices"])  # exact: written round-trip precise
+            np.testing.assert_array_equal(back["triangles"], mesh["triangles"])
+            np.testing.assert_array_equal(back["vertex_markers"], mesh["vertex_markers"])
+            np.testing.assert_array_equal(back["triangle_attributes"], mesh["triangle_attributes"])
+            self.assertEqual(edge_set(back["segments"]), edge_set(mesh["segments"]))
+            np.testing.assert_array_equal(back["regions"], mesh["regions"])
+            # one-based files read back the same
+            deltamesh.write(mesh, base + "1.node", first_index=1)
+            deltamesh.write(mesh, base + "1.ele", first_index=1)
+            np.testing.assert_array_equal(deltamesh.read(base + "1.ele")["triangles"], mesh["triangles"])
+            # the .poly as a PSLG meshes again to the same triangles
+            again = quiet_triangulate(deltamesh.read(base), "pq30a0.02A")
+            deltamesh.validate(again)
+            for ext in (".msh", ".vtu", ".svg", ".off"):
+                deltamesh.write(mesh, base + ext)
+                self.assertGreater(os.path.getsize(base + ext), 100)
+            with self.assertRaisesRegex(ValueError, "cannot tell the output format"):
+                deltamesh.write(mesh, base + ".xyz")
+        with self.assertRaises(deltamesh.IoError):
+            deltamesh.write(mesh, os.path.join(d, "gone", "m.node"))
+
+    def test_read_errors(self):
+        with tempfile.TemporaryDirectory() as d:
+            path = os.path.join(d, "bad.poly")
+            with open(path, "w") as f:
+                f.write("3 2 0 0\n1 0 0\n2 1 zero\n3 0 1\n0 0\n0\n")
+            with self.assertRaises(deltamesh.ParseError) as cm:
+                deltamesh.read(path)
+            self.assertEqual(cm.exception.line, 3)
+            self.assertIn("bad.poly:3", str(cm.exception))
+            for missing in ("missing.poly", "missing.node", "missing"):
+                with self.assertRaisesRegex(deltamesh.IoError, "missing"):
+                    deltamesh.read(os.path.join(d, missing))
+
+
+class Docs(unittest.TestCase):
+    def test_docs_example_runs(self):
+        """The example in docs/python.md runs and prints what the text says it checks."""
+        doc = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "docs", "python.md")
+        with open(doc) as f:
+            code = re.search(r"```python\n(.*?)```", f.read(), re.S).group(1)
+        out = io.StringIO()
+        with contextlib.redirect_stdout(out):
+            exec(compile(code, doc, "exec"), {})
+        lines = out.getvalue().splitlines()
+        self.assertEqual(len(lines), 4)
+        self.assertTrue(lines[1].startswith("True "))  # complete
+        self.assertGreaterEqual(float(lines[1].split()[2]), 30)  # smallest angle
+        self.assertTrue(lines[2].startswith("mesh is valid"))
+        self.assertEqual(lines[3], "True")  # dict and keyword forms agree
+
+    def test_check_switch_reports(self):
+        mesh = quiet_triangulate(square_with_hole(), "pq30C")
+        self.assertRegex(mesh["stats"]["check"], "^mesh is valid")
+        deltamesh.validate(mesh)
+
+
+if __name__ == "__main__":
+    unittest.main()
