@@ -451,8 +451,9 @@ class Gil(unittest.TestCase):
         times["main"] = time.perf_counter()
         th.join()
         self.assertGreater(times["triangles"], 200000)
-        # held GIL: main resumes as the call returns (measured: at 99.7% of it)
-        self.assertLess(times["main"] - times["start"], 0.5 * (times["end"] - times["start"]))
+        # Held GIL: main resumes only as the call returns (measured: at 99.7%
+        # of it); released: at once. 0.9 leaves room for a loaded machine.
+        self.assertLess(times["main"] - times["start"], 0.9 * (times["end"] - times["start"]))
 
 
 class Errors(unittest.TestCase):
