@@ -572,23 +572,6 @@ bool wants_refinement(const Options& o, bool size_fn) {
   return o.quality || o.area || o.steiner_budget || o.conforming_delaunay || size_fn;
 }
 
-dm::RefineOptions refine_options(const Options& o) {
-  dm::RefineOptions r;
-  r.min_angle_deg = o.quality ? o.min_angle.value_or(20.0) : 0.0;
-  r.max_area = o.max_area.value_or(-1.0);
-  r.use_triangle_area_bounds = o.area_from_regions;
-  r.steiner = o.steiner;
-  r.encroachment = o.encroachment;
-  r.order = o.refine_order;
-  r.segment_splitting = o.no_boundary_steiner == 0   ? dm::SegmentSplitting::All
-                        : o.no_boundary_steiner == 1 ? dm::SegmentSplitting::InteriorOnly
-                                                     : dm::SegmentSplitting::None;
-  r.conforming_delaunay = o.conforming_delaunay;
-  if (o.steiner_budget) r.max_steiner = static_cast<std::size_t>(*o.steiner_budget);
-  r.time_limit_seconds = o.time_limit;
-  return r;
-}
-
 // Meshes `in` as the CLI would with the same switches; called without the GIL.
 void run_pipeline(Input& in, const Options& o, dm::RefineOptions* ropt, RunResult& res) {
   const auto t0 = std::chrono::steady_clock::now();
@@ -852,7 +835,7 @@ py::dict run(Input in, const Options& o, py::object max_area_fn, py::object max_
         "switches -r with -a and no number read per-triangle bounds: the input needs 'triangle_max_area'");
   std::optional<dm::RefineOptions> ropt;
   if (wants_refinement(o, given(area.fn) || given(edge.fn))) {
-    ropt = refine_options(o);
+    ropt = dm::cli::refine_options(o);
     ropt->max_area_at = area.make();
     ropt->max_edge_at = edge.make();
   }

@@ -587,19 +587,8 @@ class Run {
   }
 
   dm::RefineOptions refine_options() const {
-    dm::RefineOptions r;
-    r.min_angle_deg = opt_.quality ? opt_.min_angle.value_or(20.0) : 0.0;
-    r.max_area = opt_.max_area.value_or(-1.0);
-    r.use_triangle_area_bounds = opt_.area_from_regions || (geojson_ && !opt_.area_property.empty());
-    r.steiner = opt_.steiner;
-    r.encroachment = opt_.encroachment;
-    r.order = opt_.refine_order;
-    r.segment_splitting = opt_.no_boundary_steiner == 0   ? dm::SegmentSplitting::All
-                          : opt_.no_boundary_steiner == 1 ? dm::SegmentSplitting::InteriorOnly
-                                                          : dm::SegmentSplitting::None;
-    r.conforming_delaunay = opt_.conforming_delaunay;
-    if (opt_.steiner_budget) r.max_steiner = *opt_.steiner_budget;
-    r.time_limit_seconds = opt_.time_limit;
+    dm::RefineOptions r = dm::cli::refine_options(opt_);
+    r.use_triangle_area_bounds = r.use_triangle_area_bounds || (geojson_ && !opt_.area_property.empty());
     return r;
   }
 

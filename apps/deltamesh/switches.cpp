@@ -399,4 +399,21 @@ Exit codes:
 )";
 }
 
+RefineOptions refine_options(const Options& o) {
+  RefineOptions r;
+  r.min_angle_deg = o.quality ? o.min_angle.value_or(20.0) : 0.0;
+  r.max_area = o.max_area.value_or(-1.0);
+  r.use_triangle_area_bounds = o.area_from_regions;
+  r.steiner = o.steiner;
+  r.encroachment = o.encroachment;
+  r.order = o.refine_order;
+  r.segment_splitting = o.no_boundary_steiner == 0   ? SegmentSplitting::All
+                        : o.no_boundary_steiner == 1 ? SegmentSplitting::InteriorOnly
+                                                     : SegmentSplitting::None;
+  r.conforming_delaunay = o.conforming_delaunay;
+  if (o.steiner_budget) r.max_steiner = static_cast<std::size_t>(*o.steiner_budget);
+  r.time_limit_seconds = o.time_limit;
+  return r;
+}
+
 }  // namespace deltamesh::cli

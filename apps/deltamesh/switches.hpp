@@ -98,4 +98,9 @@ struct UsageError {
 
 std::string help_text();
 
+// The refinement the switches ask for (-q -a -S -Y -D, --steiner, ...).
+// -a without a number (area_from_regions) turns on the mesh's own bounds;
+// callers with other sources of bounds (GeoJSON's --area-property) add them.
+RefineOptions refine_options(const Options& o);
+
 }  // namespace deltamesh::cli
