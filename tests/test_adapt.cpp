@@ -22,6 +22,7 @@
 #include "deltamesh/triangle_io.hpp"
 #include "deltamesh/triangulate.hpp"
 #include "deltamesh/validate.hpp"
+#include "test_adversarial_util.hpp"
 #include "test_refine_util.hpp"
 
 namespace dm = deltamesh;
@@ -306,53 +307,17 @@ TEST(MeshPrimitives, RemoveDegree3VertexAndUnsplitEdgeUndoSplits) {
 
 // ---- the command line: deltamesh -rq30 --adapt FILE.1 with FILE.1.mtr ----
 
-struct Result {
-  int code = -1;
-  std::string out, err;
-};
-
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
-class AdaptCli : public ::testing::Test {
+class AdaptCli : public dm::test::TempDirTest {
  protected:
-  void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::temp_directory_path() / ("deltamesh_adapt_" + std::to_string(::getpid()) + "_" + info->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override {
-    if (!HasFailure()) fs::remove_all(dir_);
-  }
-  void write(const std::string& name, const std::string& text) const {
-    std::ofstream(dir_ / name, std::ios::binary) << text;
-  }
-  Result run(const std::string& args) const {
-    const fs::path out = dir_ / ".stdout", err = dir_ / ".stderr";
-    const std::string cmd = "cd '" + dir_.string() + "' && '" + std::string(DELTAMESH_CLI) + "' " + args + " > '" +
-                            out.string() + "' 2> '" + err.string() + "'";
-    const int status = std::system(cmd.c_str());
-    Result r;
-    r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    r.out = slurp(out);
-    r.err = slurp(err);
-    return r;
-  }
   // A fine mesh box.1.* of the unit square with a hole, and its vertices.
   dm::Pslg fine_mesh() const {
     write("box.poly",
           "8 2 0 1\n1 0 0 1\n2 1 0 1\n3 1 1 1\n4 0 1 1\n5 0.4 0.4 2\n6 0.6 0.4 2\n7 0.6 0.6 2\n8 0.4 0.6 2\n"
           "8 1\n1 1 2 1\n2 2 3 1\n3 3 4 1\n4 4 1 1\n5 5 6 2\n6 6 7 2\n7 7 8 2\n8 8 5 2\n1\n1 0.5 0.5\n");
-    const Result r = run("-pq30a0.0002 -Q box");
+    const dm::test::CliResult r = run("-pq30a0.0002 -Q box");
     EXPECT_EQ(r.code, 0) << r.err;
-    return dm::read_node((dir_ / "box.1.node").string());
+    return dm::read_node(path("box.1.node"));
   }
-  fs::path dir_;
 };
 
 TEST_F(AdaptCli, AdaptsToMtrSizes) {
@@ -361,16 +326,16 @@ TEST_F(AdaptCli, AdaptsToMtrSizes) {
   std::string mtr = std::to_string(nodes.points.size()) + " 1\n# sizes: 0.01 at x = 0 to 0.2 at x = 1\n";
   for (const dm::Point& p : nodes.points) mtr += std::to_string(0.01 + 0.19 * p.x) + "\n";
   write("box.1.mtr", mtr);
-  const Result r = run("-rpq30C --adapt box.1");
+  const dm::test::CliResult r = run("-rpq30C --adapt box.1");
   ASSERT_EQ(r.code, 0) << r.out << r.err;
   EXPECT_NE(r.out.find("Coarsened:"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("Check:"), std::string::npos) << r.out;
   // The output is valid with the .poly's segments, and much coarser.
-  dm::Pslg out = dm::read_node((dir_ / "box.2.node").string());
+  dm::Pslg out = dm::read_node(path("box.2.node"));
   EXPECT_LT(out.points.size() * 2, nodes.points.size()) << nodes.points.size() << " -> " << out.points.size();
-  const dm::EleData ele = dm::read_ele((dir_ / "box.2.ele").string(), out.first_index);
+  const dm::EleData ele = dm::read_ele(path("box.2.ele"), out.first_index);
   // The corners keep their numbers (never removed, and first).
-  const dm::Pslg g = dm::read_poly((dir_ / "box.poly").string());
+  const dm::Pslg g = dm::read_poly(path("box.poly"));
   out.segments = g.segments;
   const dm::Mesh m = dm::mesh_from_triangles(out, ele.triangles, ele.num_attributes, ele.attributes);
   expect_valid(m, g);
@@ -400,13 +365,13 @@ TEST_F(AdaptCli, BadMtrFilesAreInputErrors) {
   };
   for (const Case& c : cases) {
     write("box.1.mtr", c.text);
-    const Result r = run("-rq30 --adapt box.1");
+    const dm::test::CliResult r = run("-rq30 --adapt box.1");
     EXPECT_EQ(r.code, 2) << c.message << "\n" << r.err;
     EXPECT_NE(r.err.find(c.message), std::string::npos) << r.err;
-    EXPECT_FALSE(fs::exists(dir_ / "box.2.node"));
+    EXPECT_FALSE(exists("box.2.node"));
   }
-  fs::remove(dir_ / "box.1.mtr");
-  const Result r = run("-rq30 --adapt box.1");
+  fs::remove(path("box.1.mtr"));
+  const dm::test::CliResult r = run("-rq30 --adapt box.1");
   EXPECT_EQ(r.code, 2);
   EXPECT_NE(r.err.find("box.1.mtr"), std::string::npos) << r.err;
 }
