@@ -5,7 +5,7 @@ WERROR     ?= OFF
 CMAKE_ARGS ?=
 CLI        := $(BUILD)/bin/deltamesh
 
-.PHONY: all deps configure build demo test bench check-long clean test-sanitize fuzz
+.PHONY: all deps configure build demo test bench check-long clean test-sanitize fuzz install
 
 all: build
 
@@ -25,6 +25,12 @@ demo: deps build
 	@$(BUILD)/bin/deltamesh-gen uniform 2000 --seed 7 > out/demo.node
 	$(CLI) -V -C --svg out/demo.svg out/demo.node
 	@echo "demo: mesh written to out/demo.1.node, out/demo.1.ele; picture: out/demo.svg"
+
+# The tools, the library (headers, static library, CMake package) and the
+# Python module; PREFIX defaults to /usr/local.
+PREFIX ?=
+install: build
+	@cmake --install $(BUILD) $(if $(PREFIX),--prefix $(PREFIX))
 
 test: deps build
 	@cd $(BUILD) && ctest --output-on-failure -j $(JOBS) -LE long
