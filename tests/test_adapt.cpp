@@ -197,6 +197,59 @@ TEST(Coarsen, ProtectedVerticesAndNoFieldStay) {
   expect_valid(m, g);
 }
 
+// A vertex marker of its own (one the vertex would not get from its segments)
+// marks a point the user cares about: it stays, with its marker.
+TEST(Coarsen, VerticesWithTheirOwnMarkersStay) {
+  dm::Pslg g;
+  g.points = {{0, 0}, {1, 0}, {1, 1}, {0, 1}, {0.5, 0}, {0.3, 0.3}, {0.7, 0.7}, {0.3, 0.7}};
+  // On the bottom edge (segments marked 1): 7; interior points: 9, 0 (none), 1.
+  g.point_markers = {0, 0, 0, 0, 7, 9, 0, 1};
+  g.segments = {{0, 4, 1}, {4, 1, 1}, {1, 2, 1}, {2, 3, 1}, {3, 0, 1}};
+  dm::Mesh m = mesh_of(g, quality(30, 2e-3));
+  ASSERT_GT(used_vertices(m), 200u);
+  const dm::CoarsenStats st = dm::coarsen(m, [](double, double) { return 100.0; });
+  expect_valid(m, g);
+  EXPECT_GT(st.removed, 150u);
+  auto find = [&](dm::Point p) {
+    for (dm::VertexId v = 0; v < m.num_vertices(); ++v)
+      if (m.point(v) == p) return v;
+    return dm::kNone;
+  };
+  ASSERT_EQ(m.vertex_markers().size(), m.num_vertices());
+  for (const auto& [p, marker] : {std::pair{dm::Point{0.5, 0}, 7}, {dm::Point{0.3, 0.3}, 9}, {dm::Point{0.3, 0.7}, 1}}) {
+    const dm::VertexId v = find(p);
+    ASSERT_NE(v, dm::kNone) << p.x << "," << p.y;
+    EXPECT_NE(m.out_edge(v), dm::kNone);
+    EXPECT_EQ(m.vertex_markers()[v], marker);
+  }
+  EXPECT_EQ(find({0.7, 0.7}), dm::kNone);  // no marker of its own: removed
+  // Everything else that is left is a corner or a marked point.
+  EXPECT_EQ(used_vertices(m), 4u + 3u);
+
+  // A mesh read without its segments (-r without -p): the boundary's marker
+  // (5) is only on its vertices; they go, the 7 between them stays.
+  g.point_markers = {0, 0, 0, 0, 7, 0, 0, 0};
+  g.points.resize(5);
+  for (dm::Segment& sg : g.segments) sg.marker = 5;
+  const dm::Mesh fine = mesh_of(g, quality(30, 2e-3));
+  dm::Pslg nodes;
+  nodes.points.assign(fine.points().begin(), fine.points().end());
+  nodes.point_markers = fine.vertex_markers();
+  std::vector<dm::VertexId> tris;
+  for (dm::TriId t = 0; t < fine.num_triangle_slots(); ++t)
+    if (fine.is_real(t))
+      for (dm::VertexId v : fine.triangle(t)) tris.push_back(v);
+  m = dm::mesh_from_triangles(nodes, tris);
+  ASSERT_GT(used_vertices(m), 200u);
+  dm::coarsen(m, [](double, double) { return 100.0; });
+  g.segments.clear();  // (the boundary is checked as the mesh's own)
+  expect_valid(m, g);
+  const dm::VertexId v = find({0.5, 0});
+  ASSERT_NE(v, dm::kNone);
+  EXPECT_EQ(m.vertex_markers()[v], 7);
+  EXPECT_EQ(used_vertices(m), 5u);
+}
+
 TEST(Adapt, RefineCoarsenRefineRoundTrip) {
   const dm::Pslg g = domain();
   dm::Mesh m = mesh_of(g, quality(30, 2e-4));

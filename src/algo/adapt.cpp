@@ -113,9 +113,17 @@ class Coarsener {
         cm.push_back(m_.edge_marker(in));
       }
     }
+    // A vertex marker of its own marks a point that matters: it stays. Not
+    // its own: 0, the one its segments give it (theirs, 1 on the boundary),
+    // or, on segments without a marker (a boundary read without its .poly),
+    // a neighbour's along the chain.
+    const auto marker = [&](VertexId w) { return w < m_.vertex_markers().size() ? m_.vertex_markers()[w] : 0; };
+    const int own = marker(v);
     if (cn.empty() && !s.boundary) {
-      s.kind = Kind::Interior;
-    } else if (cn.size() == 2 && cm[0] == cm[1]) {
+      if (own == 0) s.kind = Kind::Interior;
+    } else if (cn.size() == 2 && cm[0] == cm[1] &&
+               (own == 0 || own == (cm[0] != 0 ? cm[0] : s.boundary ? 1 : 0) ||
+                (cm[0] == 0 && (own == marker(cn[0]) || own == marker(cn[1]))))) {
       const Point &pa = pt(cn[0]), &pv = pt(v), &pb = pt(cn[1]);
       const double dot = (pa.x - pv.x) * (pb.x - pv.x) + (pa.y - pv.y) * (pb.y - pv.y);
       const double o = orient2d(pa, pv, pb);
