@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <array>
+#include <chrono>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -248,6 +249,30 @@ TEST(Coarsen, VerticesWithTheirOwnMarkersStay) {
   ASSERT_NE(v, dm::kNone);
   EXPECT_EQ(m.vertex_markers()[v], 7);
   EXPECT_EQ(used_vertices(m), 5u);
+}
+
+// A fan: n points on the bottom side, every triangle at the top vertex
+// (degree n + 1). Coarsening merges the bottom side into one segment; each
+// removal next to the hub must not cost O(n) (it took 15 s at n = 40000,
+// quadratic in n, when the Lawson pass started from every edge around the
+// touched vertices; now about 0.1 s).
+TEST(Coarsen, AHubOfHugeDegreeDoesNotMakeItQuadratic) {
+  const std::size_t n = 40000;
+  dm::Pslg nodes;
+  for (std::size_t i = 0; i < n; ++i) nodes.points.push_back({double(i) / double(n - 1), 0.0});
+  nodes.points.push_back({0.5, 1.0});
+  std::vector<dm::VertexId> tris;
+  for (dm::VertexId i = 0; i + 1 < n; ++i) tris.insert(tris.end(), {i, i + 1, static_cast<dm::VertexId>(n)});
+  dm::Mesh m = dm::mesh_from_triangles(nodes, tris);
+  const auto t0 = std::chrono::steady_clock::now();
+  const dm::CoarsenStats st = dm::coarsen(m, [](double, double) { return 1.0; });
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  EXPECT_EQ(st.removed, n - 2);
+  EXPECT_EQ(used_vertices(m), 3u);
+  dm::Pslg outline;
+  outline.points = {m.point(0), m.point(1), m.point(2)};
+  expect_valid(m, outline);
+  EXPECT_LT(seconds, 5.0) << "coarsening a fan of degree " << n << " took " << seconds << " s";
 }
 
 TEST(Adapt, RefineCoarsenRefineRoundTrip) {
