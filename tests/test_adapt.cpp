@@ -275,6 +275,43 @@ TEST(Coarsen, AHubOfHugeDegreeDoesNotMakeItQuadratic) {
   EXPECT_LT(seconds, 5.0) << "coarsening a fan of degree " << n << " took " << seconds << " s";
 }
 
+// A grid's Delaunay triangulation (all cocircular) has vertices of degree 4
+// at the crossing of their link's diagonals: no spoke can be flipped, but
+// the vertex goes by merging its four triangles into two.
+TEST(Coarsen, GridVerticesOnTheirLinksDiagonalsGo) {
+  dm::Pslg g;
+  const int k = 30;
+  for (int j = 0; j < k; ++j)
+    for (int i = 0; i < k; ++i) g.points.push_back({double(i), double(j)});
+  dm::TriangulateOptions points_only;
+  points_only.use_segments = false;
+  dm::Mesh m = dm::triangulate(g, points_only);
+  std::size_t degree4 = 0;
+  for (dm::VertexId v = 0; v < m.num_vertices(); ++v) {
+    std::size_t d = 0;
+    bool boundary = false;
+    m.for_each_out_edge(v, [&](dm::HalfEdgeId e) {
+      ++d;
+      boundary = boundary || m.twin(e) == dm::kNone;
+      return true;
+    });
+    if (d == 4 && !boundary && m.twin(dm::prev_edge(m.out_edge(v))) != dm::kNone) ++degree4;
+  }
+  ASSERT_GT(degree4, 20u);  // the case this is about
+  const dm::CoarsenStats st = dm::coarsen(m, [](double, double) { return 1000.0; });
+  EXPECT_EQ(st.refused, 0u) << st.summary();
+  EXPECT_EQ(used_vertices(m), 4u);
+  EXPECT_EQ(m.num_triangles(), 2u);
+  dm::Pslg corners;
+  expect_valid(m, corners);
+  // Graded: a field of 5 to 10 grid steps leaves about (k / 7)^2 vertices, not a third of them.
+  dm::Mesh f = dm::triangulate(g, points_only);
+  const dm::AdaptStats as = dm::adapt(f, [](double x, double) { return 5 * (1 + x / k); }, adapt_options(25));
+  expect_valid(f, corners);
+  EXPECT_EQ(as.coarsen.refused, 0u);
+  EXPECT_LT(as.coarsen.vertices_after, std::size_t{k * k / 8});
+}
+
 TEST(Adapt, RefineCoarsenRefineRoundTrip) {
   const dm::Pslg g = domain();
   dm::Mesh m = mesh_of(g, quality(30, 2e-4));

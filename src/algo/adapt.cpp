@@ -232,6 +232,32 @@ class Coarsener {
     }
   }
 
+  // Flips get stuck at degree 4 when v lies on a diagonal of its link
+  // (every vertex of a grid's Delaunay triangulation with that link): no
+  // quadrilateral of a spoke is strictly convex. v is then the split point
+  // of that diagonal, and unsplit_edge merges its four triangles into two.
+  template <class NoteStar>
+  bool unsplit_degree4(VertexId v, NoteStar&& note_star) {
+    HalfEdgeId out[4];
+    std::size_t d = 0;
+    m_.for_each_out_edge(v, [&](HalfEdgeId e) {
+      if (d < 4) out[d] = e;
+      return ++d <= 4;
+    });
+    if (d != 4 || m_.twin(prev_edge(out[3])) != out[0]) return false;
+    for (std::size_t k = 0; k < 2; ++k) {
+      // g = v->b; a opposite; c and d the other two.
+      const VertexId b = m_.dest(out[k]), c = m_.dest(out[k + 1]), a = m_.dest(out[k + 2]), e = m_.dest(out[(k + 3) % 4]);
+      if (orient2d(pt(a), pt(v), pt(b)) != 0 || !(orient2d(pt(a), pt(b), pt(c)) > 0) ||
+          !(orient2d(pt(b), pt(a), pt(e)) > 0))
+        continue;
+      note_star();
+      m_.unsplit_edge(out[k]);
+      return true;
+    }
+    return false;
+  }
+
   void note_flip(HalfEdgeId e) {
     touch(m_.origin(e));
     touch(m_.dest(e));
@@ -271,6 +297,8 @@ class Coarsener {
       if (ok) {
         note_star();
         m_.remove_degree3_vertex(v);
+      } else {
+        ok = unsplit_degree4(v, note_star);
       }
     } else {
       // g = v->b; on the boundary b is the most clockwise neighbour.
