@@ -607,9 +607,9 @@ void run_pipeline(Input& in, const Options& o, dm::RefineOptions* ropt, RunResul
       seeds.regions = in.pslg.regions;
       dm::carve_mesh(res.mesh, seeds, dopt, &res.stats.domain);
       if (res.stats.domain.triangles_removed) dm::finish_vertex_markers(res.mesh);
-      if (res.stats.domain.holes_ignored)
-        res.stats.warnings.push_back(std::to_string(res.stats.domain.holes_ignored) +
-                                     " hole point(s) ignored (on a vertex or on a segment)");
+      // The command line's warnings for -r -p (region points ignored, mesh emptied too).
+      for (std::string& w : dm::domain_warnings(res.stats.domain, res.mesh.num_triangles(), true))
+        res.stats.warnings.push_back(std::move(w));
     }
     if (o.convex_hull)
       for (dm::HalfEdgeId e = 0; e < res.mesh.triangle_vertices().size(); ++e)
@@ -1133,6 +1133,11 @@ void write_file(const py::dict& tri, const std::string& path, int first_index, b
   if (first_index != 0 && first_index != 1) throw py::value_error("first_index: must be 0 or 1");
   if (!dm::output_format_for(path)) throw py::value_error(dm::UnknownOutputFormat(path).what());
   Rebuilt r = rebuild(tri, true);
+  // Inserting a segment changes the triangles: the file would not hold the mesh given.
+  if (r.inserted.inserted || r.inserted.vertices_added)
+    throw py::value_error("segments: " + std::to_string(r.inserted.inserted) +
+                          " segment(s) not an edge or a chain of edges of the triangles (deltamesh.check() "
+                          "lists the problems); mesh them in with triangulate(mesh, 'rp') first");
   py::gil_scoped_release nogil;
   if (*dm::output_format_for(path) == dm::OutputFormat::Poly) {
     dm::TriangleWriteOptions w;

@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <array>
+#include <chrono>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -195,6 +196,120 @@ TEST(Coarsen, ProtectedVerticesAndNoFieldStay) {
   dm::coarsen(m, [](double, double) { return 100.0; }, protect(before));
   EXPECT_EQ(used_vertices(m), before);
   expect_valid(m, g);
+}
+
+// A vertex marker of its own (one the vertex would not get from its segments)
+// marks a point the user cares about: it stays, with its marker.
+TEST(Coarsen, VerticesWithTheirOwnMarkersStay) {
+  dm::Pslg g;
+  g.points = {{0, 0}, {1, 0}, {1, 1}, {0, 1}, {0.5, 0}, {0.3, 0.3}, {0.7, 0.7}, {0.3, 0.7}};
+  // On the bottom edge (segments marked 1): 7; interior points: 9, 0 (none), 1.
+  g.point_markers = {0, 0, 0, 0, 7, 9, 0, 1};
+  g.segments = {{0, 4, 1}, {4, 1, 1}, {1, 2, 1}, {2, 3, 1}, {3, 0, 1}};
+  dm::Mesh m = mesh_of(g, quality(30, 2e-3));
+  ASSERT_GT(used_vertices(m), 200u);
+  const dm::CoarsenStats st = dm::coarsen(m, [](double, double) { return 100.0; });
+  expect_valid(m, g);
+  EXPECT_GT(st.removed, 150u);
+  auto find = [&](dm::Point p) {
+    for (dm::VertexId v = 0; v < m.num_vertices(); ++v)
+      if (m.point(v) == p) return v;
+    return dm::kNone;
+  };
+  ASSERT_EQ(m.vertex_markers().size(), m.num_vertices());
+  for (const auto& [p, marker] : {std::pair{dm::Point{0.5, 0}, 7}, {dm::Point{0.3, 0.3}, 9}, {dm::Point{0.3, 0.7}, 1}}) {
+    const dm::VertexId v = find(p);
+    ASSERT_NE(v, dm::kNone) << p.x << "," << p.y;
+    EXPECT_NE(m.out_edge(v), dm::kNone);
+    EXPECT_EQ(m.vertex_markers()[v], marker);
+  }
+  EXPECT_EQ(find({0.7, 0.7}), dm::kNone);  // no marker of its own: removed
+  // Everything else that is left is a corner or a marked point.
+  EXPECT_EQ(used_vertices(m), 4u + 3u);
+
+  // A mesh read without its segments (-r without -p): the boundary's marker
+  // (5) is only on its vertices; they go, the 7 between them stays.
+  g.point_markers = {0, 0, 0, 0, 7, 0, 0, 0};
+  g.points.resize(5);
+  for (dm::Segment& sg : g.segments) sg.marker = 5;
+  const dm::Mesh fine = mesh_of(g, quality(30, 2e-3));
+  dm::Pslg nodes;
+  nodes.points.assign(fine.points().begin(), fine.points().end());
+  nodes.point_markers = fine.vertex_markers();
+  std::vector<dm::VertexId> tris;
+  for (dm::TriId t = 0; t < fine.num_triangle_slots(); ++t)
+    if (fine.is_real(t))
+      for (dm::VertexId v : fine.triangle(t)) tris.push_back(v);
+  m = dm::mesh_from_triangles(nodes, tris);
+  ASSERT_GT(used_vertices(m), 200u);
+  dm::coarsen(m, [](double, double) { return 100.0; });
+  g.segments.clear();  // (the boundary is checked as the mesh's own)
+  expect_valid(m, g);
+  const dm::VertexId v = find({0.5, 0});
+  ASSERT_NE(v, dm::kNone);
+  EXPECT_EQ(m.vertex_markers()[v], 7);
+  EXPECT_EQ(used_vertices(m), 5u);
+}
+
+// A fan: n points on the bottom side, every triangle at the top vertex
+// (degree n + 1). Coarsening merges the bottom side into one segment; each
+// removal next to the hub must not cost O(n) (it took 15 s at n = 40000,
+// quadratic in n, when the Lawson pass started from every edge around the
+// touched vertices; now about 0.1 s).
+TEST(Coarsen, AHubOfHugeDegreeDoesNotMakeItQuadratic) {
+  const std::size_t n = 40000;
+  dm::Pslg nodes;
+  for (std::size_t i = 0; i < n; ++i) nodes.points.push_back({double(i) / double(n - 1), 0.0});
+  nodes.points.push_back({0.5, 1.0});
+  std::vector<dm::VertexId> tris;
+  for (dm::VertexId i = 0; i + 1 < n; ++i) tris.insert(tris.end(), {i, i + 1, static_cast<dm::VertexId>(n)});
+  dm::Mesh m = dm::mesh_from_triangles(nodes, tris);
+  const auto t0 = std::chrono::steady_clock::now();
+  const dm::CoarsenStats st = dm::coarsen(m, [](double, double) { return 1.0; });
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  EXPECT_EQ(st.removed, n - 2);
+  EXPECT_EQ(used_vertices(m), 3u);
+  dm::Pslg outline;
+  outline.points = {m.point(0), m.point(1), m.point(2)};
+  expect_valid(m, outline);
+  EXPECT_LT(seconds, 5.0) << "coarsening a fan of degree " << n << " took " << seconds << " s";
+}
+
+// A grid's Delaunay triangulation (all cocircular) has vertices of degree 4
+// at the crossing of their link's diagonals: no spoke can be flipped, but
+// the vertex goes by merging its four triangles into two.
+TEST(Coarsen, GridVerticesOnTheirLinksDiagonalsGo) {
+  dm::Pslg g;
+  const int k = 30;
+  for (int j = 0; j < k; ++j)
+    for (int i = 0; i < k; ++i) g.points.push_back({double(i), double(j)});
+  dm::TriangulateOptions points_only;
+  points_only.use_segments = false;
+  dm::Mesh m = dm::triangulate(g, points_only);
+  std::size_t degree4 = 0;
+  for (dm::VertexId v = 0; v < m.num_vertices(); ++v) {
+    std::size_t d = 0;
+    bool boundary = false;
+    m.for_each_out_edge(v, [&](dm::HalfEdgeId e) {
+      ++d;
+      boundary = boundary || m.twin(e) == dm::kNone;
+      return true;
+    });
+    if (d == 4 && !boundary && m.twin(dm::prev_edge(m.out_edge(v))) != dm::kNone) ++degree4;
+  }
+  ASSERT_GT(degree4, 20u);  // the case this is about
+  const dm::CoarsenStats st = dm::coarsen(m, [](double, double) { return 1000.0; });
+  EXPECT_EQ(st.refused, 0u) << st.summary();
+  EXPECT_EQ(used_vertices(m), 4u);
+  EXPECT_EQ(m.num_triangles(), 2u);
+  dm::Pslg corners;
+  expect_valid(m, corners);
+  // Graded: a field of 5 to 10 grid steps leaves about (k / 7)^2 vertices, not a third of them.
+  dm::Mesh f = dm::triangulate(g, points_only);
+  const dm::AdaptStats as = dm::adapt(f, [](double x, double) { return 5 * (1 + x / k); }, adapt_options(25));
+  expect_valid(f, corners);
+  EXPECT_EQ(as.coarsen.refused, 0u);
+  EXPECT_LT(as.coarsen.vertices_after, std::size_t{k * k / 8});
 }
 
 TEST(Adapt, RefineCoarsenRefineRoundTrip) {

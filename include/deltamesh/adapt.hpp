@@ -73,7 +73,8 @@ struct CoarsenStats {
 // edges, same marker, collinear: exactly, or within 1e-11 of the line
 // through the two neighbours relative to their distance, since split points
 // of slanted segments are rounded off the line), whose subsegments merge.
-// Vertices where segments end or bend, or where markers change, stay.
+// Vertices where segments end or bend, or where markers change, stay, and
+// so do vertices with a marker of their own (not 0, not their segments').
 // Candidates go smallest shortest-edge/h first (a heap, re-keyed as stars
 // change), which grades the result. Each removal flips the vertex's degree
 // down to 3 (interior) or 2 per side (segment), choosing Devillers' ear of

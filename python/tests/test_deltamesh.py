@@ -212,6 +212,26 @@ class Quality(unittest.TestCase):
         with self.assertRaisesRegex(ValueError, "triangles"):
             deltamesh.triangulate(square_with_hole(), "rq")
 
+    def test_refine_with_p_warns_as_the_command_line_does(self):
+        """'rp' reports region points it could not use and a mesh emptied by a hole (the CLI's warnings)."""
+        coarse = quiet_triangulate(two_regions(), "pq30")
+        outside = dict(coarse, regions=[[.25, .5, 1, -1], [3, 3, 2, -1]])
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always")
+            mesh = deltamesh.triangulate(outside, "rpA")
+        deltamesh.validate(mesh)
+        self.assertEqual(mesh["stats"]["regions_ignored"], 1)
+        self.assertIn("1 region point ignored", mesh["stats"]["warnings"][0])
+        self.assertTrue(any("region point ignored" in str(w.message) for w in caught))
+        # a hole point in a closed region with no segment left around it eats the mesh
+        emptied = dict(coarse, segments=np.zeros((0, 2), int), holes=[[.25, .5]])
+        emptied.pop("segment_markers")
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always")
+            mesh = deltamesh.triangulate(emptied, "rp")
+        self.assertEqual(len(mesh["triangles"]), 0)
+        self.assertTrue(any("every triangle was removed" in str(w.message) for w in caught))
+
     def test_second_order_midpoints(self):
         mesh = quiet_triangulate(square_with_hole(), "pq30o2")
         self.assertEqual(mesh["triangles"].shape[1], 6)
@@ -573,6 +593,24 @@ class Files(unittest.TestCase):
                 deltamesh.write(mesh, base + ".xyz")
         with self.assertRaises(deltamesh.IoError):
             deltamesh.write(mesh, os.path.join(d, "gone", "m.node"))
+
+    def test_write_refuses_segments_that_are_not_edges(self):
+        """Inserting such a segment would change the triangles: the file would not hold the mesh given."""
+        square = np.array([[0, 0], [1, 0], [1, 1], [0, 1]], float)
+        mesh = dict(vertices=square, triangles=[[0, 1, 2], [0, 2, 3]], segments=[[1, 3]])
+        self.assertFalse(deltamesh.check(mesh)["ok"])
+        with tempfile.TemporaryDirectory() as d:
+            for ext in (".ele", ".poly", ".vtu"):
+                path = os.path.join(d, "m" + ext)
+                with self.assertRaisesRegex(ValueError, "segments: .*not an edge"):
+                    deltamesh.write(mesh, path)
+                self.assertFalse(os.path.exists(path))
+            # segments that are chains of edges are written as they are
+            good = dict(vertices=square, triangles=[[0, 1, 2], [0, 2, 3]], segments=[[0, 2]])
+            deltamesh.validate(good)
+            for ext in (".node", ".ele"):
+                deltamesh.write(good, os.path.join(d, "g" + ext))
+            np.testing.assert_array_equal(deltamesh.read(os.path.join(d, "g.ele"))["triangles"], good["triangles"])
 
     def test_read_errors(self):
         with tempfile.TemporaryDirectory() as d:

@@ -26,6 +26,8 @@ constexpr double kAltitudeScale = 1.1547005383792515;  // 2 / sqrt(3)
 // this close to the line through its neighbours (relative to their
 // distance) counts as on it. Far below the validator's 1e-9.
 constexpr double kCollinearTolerance = 1e-11;
+// Vertices of higher degree are never removed (reducing one costs O(degree^2)).
+constexpr std::size_t kMaxDegree = 4096;
 
 class Coarsener {
  public:
@@ -68,6 +70,7 @@ class Coarsener {
   struct Star {
     Kind kind = Kind::None;
     bool boundary = false;
+    bool huge = false;  // degree above kMaxDegree: left alone
     std::vector<HalfEdgeId> out;  // out-edges, counter-clockwise
     std::vector<VertexId> nbr;    // neighbours (out-edge ends, then the last in-edge's origin on the boundary)
     VertexId a = kNone, b = kNone;  // Segment: the two constrained neighbours
@@ -90,12 +93,13 @@ class Coarsener {
       s.out.push_back(e);
       s.nbr.push_back(m_.dest(e));
       e = m_.rotate_ccw(e);
-    } while (e != kNone && e != start && s.out.size() <= 4096);
+    } while (e != kNone && e != start && s.out.size() <= kMaxDegree);
     if (e == kNone) {
       s.boundary = true;
       s.nbr.push_back(m_.origin(prev_edge(s.out.back())));
     } else if (e != start) {
-      return s;  // absurd degree: leave alone
+      s.huge = true;  // absurd degree: leave alone
+      return s;
     }
     if (v < opt_.protect_first) return s;
     // Constrained neighbours and their edges' markers.
@@ -113,9 +117,17 @@ class Coarsener {
         cm.push_back(m_.edge_marker(in));
       }
     }
+    // A vertex marker of its own marks a point that matters: it stays. Not
+    // its own: 0, the one its segments give it (theirs, 1 on the boundary),
+    // or, on segments without a marker (a boundary read without its .poly),
+    // a neighbour's along the chain.
+    const auto marker = [&](VertexId w) { return w < m_.vertex_markers().size() ? m_.vertex_markers()[w] : 0; };
+    const int own = marker(v);
     if (cn.empty() && !s.boundary) {
-      s.kind = Kind::Interior;
-    } else if (cn.size() == 2 && cm[0] == cm[1]) {
+      if (own == 0) s.kind = Kind::Interior;
+    } else if (cn.size() == 2 && cm[0] == cm[1] &&
+               (own == 0 || own == (cm[0] != 0 ? cm[0] : s.boundary ? 1 : 0) ||
+                (cm[0] == 0 && (own == marker(cn[0]) || own == marker(cn[1]))))) {
       const Point &pa = pt(cn[0]), &pv = pt(v), &pb = pt(cn[1]);
       const double dot = (pa.x - pv.x) * (pb.x - pv.x) + (pa.y - pv.y) * (pb.y - pv.y);
       const double o = orient2d(pa, pv, pb);
@@ -134,6 +146,8 @@ class Coarsener {
     ++stamp_[v];
     if (refused_[v]) return;
     const Star s = star(v);
+    // For good: each removal next to it would walk kMaxDegree spokes again.
+    if (s.huge) refused_[v] = 1;
     if (s.kind == Kind::None) return;
     const Point& p = pt(v);
     if (std::isnan(h_at_[v])) h_at_[v] = h_(p.x, p.y);  // vertices do not move: one call each
@@ -211,9 +225,37 @@ class Coarsener {
       }
       if (best == kNone) return false;
       note_flip(best);
+      changed_.push_back(tri_of(best));
+      changed_.push_back(tri_of(m_.twin(best)));
       m_.flip(best);
       ++st_.flips;
     }
+  }
+
+  // Flips get stuck at degree 4 when v lies on a diagonal of its link
+  // (every vertex of a grid's Delaunay triangulation with that link): no
+  // quadrilateral of a spoke is strictly convex. v is then the split point
+  // of that diagonal, and unsplit_edge merges its four triangles into two.
+  template <class NoteStar>
+  bool unsplit_degree4(VertexId v, NoteStar&& note_star) {
+    HalfEdgeId out[4];
+    std::size_t d = 0;
+    m_.for_each_out_edge(v, [&](HalfEdgeId e) {
+      if (d < 4) out[d] = e;
+      return ++d <= 4;
+    });
+    if (d != 4 || m_.twin(prev_edge(out[3])) != out[0]) return false;
+    for (std::size_t k = 0; k < 2; ++k) {
+      // g = v->b; a opposite; c and d the other two.
+      const VertexId b = m_.dest(out[k]), c = m_.dest(out[k + 1]), a = m_.dest(out[k + 2]), e = m_.dest(out[(k + 3) % 4]);
+      if (orient2d(pt(a), pt(v), pt(b)) != 0 || !(orient2d(pt(a), pt(b), pt(c)) > 0) ||
+          !(orient2d(pt(b), pt(a), pt(e)) > 0))
+        continue;
+      note_star();
+      m_.unsplit_edge(out[k]);
+      return true;
+    }
+    return false;
   }
 
   void note_flip(HalfEdgeId e) {
@@ -240,11 +282,24 @@ class Coarsener {
       return;
     }
     touched_.clear();
+    changed_.clear();
     for (VertexId w : s.nbr) touch(w);
     bool ok = false;
+    // The star's triangles left after the flips: the slots the removal keeps.
+    const auto note_star = [&] {
+      m_.for_each_out_edge(v, [&](HalfEdgeId e) {
+        changed_.push_back(tri_of(e));
+        return true;
+      });
+    };
     if (s.kind == Kind::Interior) {
       ok = reduce(v, kNone, kNone, 3);
-      if (ok) m_.remove_degree3_vertex(v);
+      if (ok) {
+        note_star();
+        m_.remove_degree3_vertex(v);
+      } else {
+        ok = unsplit_degree4(v, note_star);
+      }
     } else {
       // g = v->b; on the boundary b is the most clockwise neighbour.
       VertexId a = s.a, b = s.b;
@@ -261,6 +316,7 @@ class Coarsener {
           !(orient2d(pt(b), pt(a), pt(m_.origin(prev_edge(m_.twin(g))))) > 0))
         g = kNone;
       if (g != kNone) {
+        note_star();
         m_.unsplit_edge(g);
         ++st_.removed_on_segments;
       }
@@ -279,15 +335,17 @@ class Coarsener {
     }
   }
 
-  // Constrained Lawson flips over the out-edges of the touched vertices
-  // (every edge a removal or its flips made is among them).
+  // Constrained Lawson flips from the edges of the triangles the removal and
+  // its flips changed (the old star's area: only there, or on its outline,
+  // can an edge have stopped being Delaunay). Not from every edge around the
+  // touched vertices: next to a vertex of degree D that costs O(D) per
+  // removal, O(D^2) to coarsen its fan.
   void lawson() {
     std::vector<HalfEdgeId>& stack = stack_;
     stack.clear();
-    for (VertexId w : touched_) m_.for_each_out_edge(w, [&](HalfEdgeId e) {
-        stack.push_back(e);
-        return true;
-      });
+    for (TriId t : changed_)
+      if (!m_.is_dead(t))
+        for (HalfEdgeId e = 3 * t; e < 3 * t + 3; ++e) stack.push_back(e);
     while (!stack.empty()) {
       const HalfEdgeId e = stack.back();
       stack.pop_back();
@@ -317,6 +375,7 @@ class Coarsener {
   std::vector<std::uint8_t> mark_, refused_;
   std::vector<double> h_at_;
   std::vector<VertexId> touched_;
+  std::vector<TriId> changed_;  // triangle slots changed by the current removal
   std::vector<HalfEdgeId> stack_, spokes_;
 };
 
