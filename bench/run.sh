@@ -120,6 +120,28 @@ if [ -x "$bin/bench_refine" ] && [ -z "${SKIP_REFINE:-}" ]; then
   fi
 fi
 
+# ---- adaptation ------------------------------------------------------------------
+# Whole process: a fine mesh of the unit square with the square hole
+# [0.4,0.6]^2 (-pq30a5e-6: ~306k triangles) adapted to h = 0.005 + 0.095 x
+# (sizes at its vertices in box.1.mtr): read, coarsen, refine, write.
+# No peer: neither CGAL's Mesh_2 nor Triangle coarsens.
+if [ -x "$bin/deltamesh" ] && [ -z "${SKIP_ADAPT:-}" ]; then
+  echo
+  echo "== adaptation (deltamesh -rpq30 --adapt box.1; medians of 3)"
+  tmp=${tmp:-$(mktemp -d)}
+  trap 'rm -rf "$tmp"' EXIT
+  printf '8 2 0 1\n1 0 0 1\n2 1 0 1\n3 1 1 1\n4 0 1 1\n5 0.4 0.4 2\n6 0.6 0.4 2\n7 0.6 0.6 2\n8 0.4 0.6 2\n8 1\n1 1 2 1\n2 2 3 1\n3 3 4 1\n4 4 1 1\n5 5 6 2\n6 6 7 2\n7 7 8 2\n8 8 5 2\n1\n1 0.5 0.5\n' >"$tmp/box.poly"
+  "$bin/deltamesh" -pq30a0.000005Q "$tmp/box"
+  awk 'NR==1{print $1, 1; next} /^#/||NF==0{next} {print 0.005 + 0.095 * $2}' "$tmp/box.1.node" >"$tmp/box.1.mtr"
+  for _ in 1 2 3; do timed "$bin/deltamesh" -rpq30Q --adapt "$tmp/box.1"; done >"$tmp/adapt_times"
+  before=$(awk 'NR==1{print $1; exit}' "$tmp/box.1.ele")
+  after=$(awk 'NR==1{print $1; exit}' "$tmp/box.2.ele")
+  line=$(printf 'adapt box: %s -> %s triangles, wall %.3f s, cpu %.3f s' "$before" "$after" \
+    "$(median 1 <"$tmp/adapt_times")" "$(median 2 <"$tmp/adapt_times")")
+  echo "$line"
+  refine_lines+=("$line")
+fi
+
 # ---- summary ----------------------------------------------------------------------
 echo
 echo "== summary (medians; ratio = CGAL wall time / deltamesh wall time, > 1: deltamesh faster;"
