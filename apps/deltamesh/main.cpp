@@ -535,7 +535,7 @@ class Run {
     if (adapted_ && adapt_stats_.smooth.passes) std::printf("Smoothed: %s\n", adapt_stats_.smooth.summary().c_str());
     if (smoothed_) {
       std::printf("Smoothed: %s", smooth_stats_.summary().c_str());
-      if (resplit_) std::printf(" (then %zu points to restore the size bounds)", resplit_);
+      if (resplit_) std::printf(" (then %zu points to restore the refinement bounds)", resplit_);
       std::printf("\n");
     }
     for (const std::string& w : written) std::printf("  wrote %s\n", w.c_str());
@@ -594,10 +594,11 @@ class Run {
   }
 
   // Refinement is asked for by -q, -a, -S or -D.
-  // A GeoJSON --area-property asks for its bounds, so it refines too.
   // --smooth=N after meshing or refinement (not --adapt: adapt() smooths).
-  // Vertices below `protect` stay. Refinement runs again if the flips left a
-  // triangle above its size bound.
+  // Vertices below `protect` stay. Refinement runs again for the triangles
+  // left outside its bounds: a flip may lengthen an edge, and a move keeps
+  // its star's smallest angle, which may already be below -q's bound, so
+  // another triangle of the star may drop below it too (seldom: a few points).
   void smooth_mesh(dm::Mesh& mesh, std::size_t protect) {
     if (opt_.smooth <= 0 || mesh.num_triangles() == 0) return;
     auto t = Clock::now();
@@ -626,6 +627,7 @@ class Run {
     }
   }
 
+  // A GeoJSON --area-property asks for its bounds, so it refines too.
   bool refining() const {
     return opt_.quality || opt_.area || opt_.steiner_budget || opt_.conforming_delaunay ||
            (geojson_ && !opt_.area_property.empty());

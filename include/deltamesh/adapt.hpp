@@ -146,8 +146,10 @@ struct AdaptOptions {
   RefineOptions refine;
   // Smoothing passes after refinement (0: none), with h and refine's
   // max_area as guards and vertices below coarsen.protect_first protected.
-  // Refinement runs again afterwards if the flips left a triangle above its
-  // bound (seldom; it then adds a few points).
+  // Refinement runs again afterwards for triangles left outside its bounds
+  // (a flip may lengthen an edge; a star whose smallest angle was already
+  // below the angle bound may get another triangle below it): seldom, a few
+  // points.
   int smooth_passes = 2;
 };
 

@@ -734,8 +734,9 @@ AdaptStats adapt(Mesh& mesh, const SizeField& h, const AdaptOptions& options) {
     so.max_area = options.refine.max_area;
     so.protect_first = options.coarsen.protect_first;
     st.smooth = smooth(mesh, so);
-    // The moves keep the bounds, but a flip may lengthen an edge (the new
-    // diagonal); refine the few triangles that left above their bound.
+    // A flip may lengthen an edge (the new diagonal), and a move only keeps
+    // its star's smallest angle, which may be below the angle bound already:
+    // refine the few triangles left outside the bounds.
     if (st.refine.complete) {
       const RefineStats again = refine(mesh, r);
       st.resplit = again.steiner_points;
