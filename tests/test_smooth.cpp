@@ -199,6 +199,22 @@ TEST(Smooth, BothTargetsKeepTheGuards) {
   }
 }
 
+TEST(Smooth, AnAngleFloorLetsStarsGiveWayAboveIt) {
+  const dm::Pslg g = domain();
+  const dm::Mesh base = refined(g, 30, 1e-3);
+  dm::SmoothOptions so;
+  so.protect_first = g.points.size();
+  dm::Mesh strict = base, floored = base;
+  const dm::SmoothStats a = dm::smooth(strict, so);
+  so.min_angle_deg = 30;
+  const dm::SmoothStats b = dm::smooth(floored, so);
+  expect_valid(floored, g);
+  // Stars may lose angle above 30 degrees, never below.
+  EXPECT_GE(dm::test::min_angle_deg(floored), 30.0 - 1e-9);
+  EXPECT_GT(b.moved, a.moved) << a.summary() << "\n" << b.summary();
+  EXPECT_LT(b.rejected, a.rejected);
+}
+
 dm::SizeField ramp() {
   return [](double x, double) { return 0.01 + 0.19 * std::clamp(x, 0.0, 1.0); };
 }
