@@ -593,7 +593,6 @@ class Run {
     }
   }
 
-  // Refinement is asked for by -q, -a, -S or -D.
   // --smooth=N after meshing or refinement (not --adapt: adapt() smooths).
   // Vertices below `protect` stay. Refinement runs again for the triangles
   // left outside its bounds: a flip may lengthen an edge, and a move keeps
@@ -627,6 +626,7 @@ class Run {
     }
   }
 
+  // Refinement is asked for by -q, -a, -S or -D.
   // A GeoJSON --area-property asks for its bounds, so it refines too.
   bool refining() const {
     return opt_.quality || opt_.area || opt_.steiner_budget || opt_.conforming_delaunay ||

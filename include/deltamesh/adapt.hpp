@@ -144,8 +144,10 @@ struct AdaptOptions {
   // longest edge at most h at its centroid), the rest is used as given
   // (angle bound, budgets, time limit).
   RefineOptions refine;
-  // Smoothing passes after refinement (0: none), with h and refine's
-  // max_area as guards and vertices below coarsen.protect_first protected.
+  // Smoothing passes after refinement (0: none; none either with
+  // refine.conforming_delaunay, whose promise a move could break), with h
+  // and refine's max_area as guards and vertices below
+  // coarsen.protect_first protected.
   // Refinement runs again afterwards for triangles left outside its bounds
   // (a flip may lengthen an edge; a star whose smallest angle was already
   // below the angle bound may get another triangle below it): seldom, a few

@@ -727,7 +727,8 @@ AdaptStats adapt(Mesh& mesh, const SizeField& h, const AdaptOptions& options) {
     };
   }
   st.refine = refine(mesh, r);
-  if (options.smooth_passes > 0 && mesh.num_triangles() > 0) {
+  // A moved vertex may encroach a segment: no smoothing of conforming meshes.
+  if (options.smooth_passes > 0 && mesh.num_triangles() > 0 && !options.refine.conforming_delaunay) {
     SmoothOptions so;
     so.passes = options.smooth_passes;
     so.h = h;
