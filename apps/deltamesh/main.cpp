@@ -109,6 +109,7 @@ class Run {
         dm::AdaptOptions aopt;
         aopt.refine = refine_options();
         aopt.refine.progress = progress_callback();
+        if (opt_.smooth >= 0) aopt.smooth_passes = opt_.smooth;
         adapt_stats_ = dm::adapt(mesh, h, aopt);
         progress_.clear();
         refine_stats_ = adapt_stats_.refine;
@@ -129,7 +130,13 @@ class Run {
         dm::finish_vertex_markers(mesh);
         refined_ = true;
         phase("refine", t);
+      } else if (opt_.smooth > 0) {
+        // Smoothing keeps a constrained Delaunay triangulation: start from one.
+        auto t = Clock::now();
+        delaunay_flips_ = dm::make_constrained_delaunay(mesh);
+        phase("constrained Delaunay flips", t);
       }
+      if (!opt_.adapt) smooth_mesh(mesh, 0);
     } else {
       const std::string in_path = geojson_ ? opt_.input : in + (poly_ ? ".poly" : ".node");
       require_file(in_path);
@@ -179,6 +186,7 @@ class Run {
       }
       if (refined_) phase("refine", stats.refine_seconds, true);
       phase("markers and attributes", stats.finish_seconds, true);
+      smooth_mesh(mesh, input.points.size());  // the input's vertices stay
       if (!opt_.quiet)
         for (const std::string& w : stats.warnings) std::fprintf(stderr, "deltamesh: warning: %s\n", w.c_str());
     }
@@ -196,7 +204,7 @@ class Run {
       copt.convex_hull = !poly_ && !opt_.refine && !refined_;  // split hull edges bend by rounding
       // -r refines a CDT (flipped to one first); without refinement the
       // mesh is written as read, Delaunay or not.
-      copt.delaunay = opt_.refine ? refined_ : opt_.cdt_method != dm::CdtMethod::Ct;
+      copt.delaunay = opt_.refine ? refined_ || smoothed_ : opt_.cdt_method != dm::CdtMethod::Ct || smoothed_;
       dm::CheckReport report = dm::check(mesh, copt);
       // With -r -p: every .poly segment was a chain of constrained edges
       // after insertion (checked before holes were carved).
@@ -524,6 +532,12 @@ class Run {
                                .c_str());
     }
     if (adapted_) std::printf("Adapted: %s\n", adapt_stats_.summary().c_str());
+    if (adapted_ && adapt_stats_.smooth.passes) std::printf("Smoothed: %s\n", adapt_stats_.smooth.summary().c_str());
+    if (smoothed_) {
+      std::printf("Smoothed: %s", smooth_stats_.summary().c_str());
+      if (resplit_) std::printf(" (then %zu points to restore the refinement bounds)", resplit_);
+      std::printf("\n");
+    }
     for (const std::string& w : written) std::printf("  wrote %s\n", w.c_str());
     if (!check_summary_.empty()) std::printf("Check: %s\n", check_summary_.c_str());
     if (opt_.verbose > 0) {
@@ -579,6 +593,39 @@ class Run {
     }
   }
 
+  // --smooth=N after meshing or refinement (not --adapt: adapt() smooths).
+  // Vertices below `protect` stay. Refinement runs again for the triangles
+  // left outside its bounds: a flip may lengthen an edge, and a move keeps
+  // its star's smallest angle, which may already be below -q's bound, so
+  // another triangle of the star may drop below it too (seldom: a few points).
+  void smooth_mesh(dm::Mesh& mesh, std::size_t protect) {
+    if (opt_.smooth <= 0 || mesh.num_triangles() == 0) return;
+    auto t = Clock::now();
+    dm::SmoothOptions so;
+    so.passes = opt_.smooth;
+    so.protect_first = protect;
+    if (refined_) so.max_area = refine_options().max_area;
+    smooth_stats_ = dm::smooth(mesh, so);
+    smoothed_ = true;
+    phase("smooth", t);
+    if (refined_ && refine_stats_.complete) {
+      t = Clock::now();
+      dm::RefineOptions ropt = refine_options();
+      ropt.progress = progress_callback();
+      const dm::RefineStats again = dm::refine(mesh, ropt);
+      progress_.clear();
+      resplit_ = again.steiner_points;
+      refine_stats_.steiner_points += again.steiner_points;
+      refine_stats_.complete = again.complete;
+      refine_stats_.budget_exhausted = again.budget_exhausted;
+      refine_stats_.time_exhausted = again.time_exhausted;
+      refine_stats_.too_large = again.too_large;
+      refine_stats_.too_large_precision = again.too_large_precision;
+      if (resplit_) dm::finish_vertex_markers(mesh);
+      phase("refine after smoothing", t);
+    }
+  }
+
   // Refinement is asked for by -q, -a, -S or -D.
   // A GeoJSON --area-property asks for its bounds, so it refines too.
   bool refining() const {
@@ -615,6 +662,9 @@ class Run {
   bool adapted_ = false;           // --adapt
   std::size_t read_vertices_ = 0, read_triangles_ = 0;  // -r: the mesh as read
   dm::AdaptStats adapt_stats_;
+  bool smoothed_ = false;          // --smooth (not with --adapt)
+  dm::SmoothStats smooth_stats_;
+  std::size_t resplit_ = 0;        // points the refinement after smoothing added
   std::vector<double> sizes_;      // --adapt: FILE.mtr
   dm::RefineStats refine_stats_;
   std::vector<Phase> phases_;

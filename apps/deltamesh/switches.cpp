@@ -179,6 +179,17 @@ Options parse_arguments(const std::vector<std::string>& args) {
         if (end == v.c_str() || *end != '\0' || !(t > 0) || !std::isfinite(t))
           throw UsageError{"--max-area=" + v + ": the maximum area must be a positive number"};
         o.max_area = t;
+      } else if (name == "--smooth") {
+        // The count is optional: --smooth alone is 3 passes.
+        o.smooth = 3;
+        if (a.find('=') != std::string::npos) {
+          const std::string v = a.substr(a.find('=') + 1);
+          int n = 0;
+          const auto r = std::from_chars(v.data(), v.data() + v.size(), n);
+          if (v.empty() || r.ec != std::errc() || r.ptr != v.data() + v.size() || n < 0 || n > 1000)
+            throw UsageError{"--smooth=" + v + ": a number of passes from 0 to 1000"};
+          o.smooth = n;
+        }
       } else if (name == "--steiner-budget") {
         const std::string v = value(name);
         unsigned long long n = 0;
@@ -274,6 +285,8 @@ Options parse_arguments(const std::vector<std::string>& args) {
       o.input = a;
     }
   }
+  if (o.smooth > 0 && o.conforming_delaunay)
+    throw UsageError{"--smooth cannot be combined with -D: moved vertices may encroach segments"};
   return o;
 }
 
@@ -300,7 +313,13 @@ Input:
       bounds of FILE.area) into the next iteration
   --adapt  (implies -r) adapt the mesh to the target edge lengths of FILE.mtr
       (TetGen's format: '<#nodes> 1', then one size per node): coarsen where
-      edges are shorter than the size, refine where longer (with -q: quality)
+      edges are shorter than the size, refine where longer (with -q: quality),
+      then smooth (2 passes; --smooth=N sets them, --smooth=0 none)
+  --smooth[=N]  N passes (default 3) of vertex smoothing after meshing or
+      refinement: free interior vertices move towards the centroid of their
+      neighbours when the smallest angle around them does not drop (nor -a's
+      area or --adapt's sizes get worse), then Delaunay flips; input
+      vertices, segments and the boundary stay
 Quality meshing:
   -q[ANGLE]  (--quality, --min-angle=ANGLE) quality mesh: no angle below ANGLE degrees (default 20), except
       in input angles under 60 degrees; up to ~34 in practice

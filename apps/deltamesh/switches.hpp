@@ -26,6 +26,7 @@ struct Options {
   bool poly = false;                 // -p  read FILE.poly (segments, holes, regions)
   bool refine = false;               // -r  read a mesh: FILE.node + FILE.ele (rebuilt, not refined yet)
   bool adapt = false;                // --adapt (implies -r): coarsen and refine to FILE.mtr's per-vertex sizes
+  int smooth = -1;                   // --smooth[=N]: N smoothing passes after refinement (-1: not given)
   bool convex_hull = false;          // -c
   bool regional_attributes = false;  // -A
   bool ignore_holes = false;         // -O

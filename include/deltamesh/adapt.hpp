@@ -82,17 +82,84 @@ struct CoarsenStats {
 // Lawson flips around its old star. The mesh is compacted on return.
 CoarsenStats coarsen(Mesh& mesh, const SizeField& h, const CoarsenOptions& options = {});
 
+// Where smooth() tries to move a vertex (docs/adapt.md compares them: on
+// -q30 meshes the Laplacian target raises the mean smallest angle more).
+enum class SmoothTarget {
+  // The centroid of the neighbours.
+  Laplacian,
+  // Optimal Delaunay triangulation (Chen & Xu): the mean of the incident
+  // triangles' circumcentres weighted by their areas (times h^-4 at their
+  // centroids with a size field, the density whose optimal mesh has edges
+  // ~h).
+  Odt,
+};
+
+struct SmoothOptions {
+  // Sweeps over the vertices (in id order, each move seen by the next), each
+  // followed by constrained Lawson flips. Stops early after a sweep that
+  // moves nothing.
+  int passes = 3;
+  SmoothTarget target = SmoothTarget::Laplacian;
+  // Optional: a move must not make its star's worst (longest edge / h at the
+  // triangle's centroid) exceed max(1, what it was).
+  SizeField h;
+  // Optional (> 0): likewise for the worst (area / max_area).
+  double max_area = 0.0;
+  // The smallest angle of a vertex's star never decreases by a move when
+  // this is < 0 (the default). When >= 0, a move may lower it while it stays
+  // at least min(this, what it was): room for the average to improve above
+  // an angle bound that must hold (e.g. refine's min_angle_deg).
+  double min_angle_deg = -1.0;
+  // Vertices with ids below this never move (as CoarsenOptions).
+  std::size_t protect_first = 0;
+};
+
+struct SmoothStats {
+  std::size_t moved = 0;     // accepted moves (a vertex counts once per pass)
+  std::size_t rejected = 0;  // vertex visits where neither the full nor the half step passed the guards
+  std::size_t flips = 0;     // constrained Lawson flips after the passes
+  std::size_t passes = 0;    // passes run
+  double min_angle_before = 0.0, min_angle_after = 0.0;    // degrees, over all triangles
+  double mean_min_angle_before = 0.0, mean_min_angle_after = 0.0;  // mean over triangles of their smallest angle
+  double seconds = 0.0;
+  std::string summary() const;
+};
+
+// Moves free vertices of a constrained Delaunay triangulation (interior, no
+// constrained edge, no vertex marker of their own, id >= protect_first)
+// towards options.target, then restores the constrained Delaunay property
+// by flips. A move is taken only if every triangle of the star stays
+// counter-clockwise (exact orient2d), its smallest angle does not decrease
+// (see min_angle_deg) and the size guards hold; else half the step is tried,
+// else the vertex stays. So the mesh's smallest angle never decreases and
+// vertices on segments, the boundary and protected ones keep their exact
+// coordinates. Topology changes only by flips. Triangle attributes and area
+// bounds stay with their slots (as coarsen()); vertex attributes are not
+// re-interpolated.
+SmoothStats smooth(Mesh& mesh, const SmoothOptions& options = {});
+
 struct AdaptOptions {
   CoarsenOptions coarsen;
   // Refinement after coarsening: its max_edge_at is set to h (a triangle's
   // longest edge at most h at its centroid), the rest is used as given
   // (angle bound, budgets, time limit).
   RefineOptions refine;
+  // Smoothing passes after refinement (0: none; none either with
+  // refine.conforming_delaunay, whose promise a move could break), with h
+  // and refine's max_area as guards and vertices below
+  // coarsen.protect_first protected.
+  // Refinement runs again afterwards for triangles left outside its bounds
+  // (a flip may lengthen an edge; a star whose smallest angle was already
+  // below the angle bound may get another triangle below it): seldom, a few
+  // points.
+  int smooth_passes = 2;
 };
 
 struct AdaptStats {
   CoarsenStats coarsen;
   RefineStats refine;
+  SmoothStats smooth;          // with smooth_passes > 0
+  std::size_t resplit = 0;     // points the refinement after smoothing inserted
   std::size_t removed = 0;    // vertices removed by coarsening
   std::size_t inserted = 0;   // Steiner points inserted by refinement
   std::size_t triangles = 0;  // final triangles

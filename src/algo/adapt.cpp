@@ -6,8 +6,10 @@
 #include <cmath>
 #include <cstdio>
 #include <memory>
+#include <numbers>
 #include <queue>
 
+#include "algo/cdt_builder.hpp"
 #include "deltamesh/errors.hpp"
 #include "deltamesh/predicates.hpp"
 
@@ -379,6 +381,166 @@ class Coarsener {
   std::vector<HalfEdgeId> stack_, spokes_;
 };
 
+// Smallest angle of triangle (a, b, c) in degrees.
+double min_angle_of(const Point& a, const Point& b, const Point& c) {
+  const auto at = [](const Point& p, const Point& q, const Point& r) {
+    const double ux = q.x - p.x, uy = q.y - p.y, wx = r.x - p.x, wy = r.y - p.y;
+    return std::atan2(std::fabs(ux * wy - uy * wx), ux * wx + uy * wy);
+  };
+  return std::min({at(a, b, c), at(b, c, a), at(c, a, b)}) * (180.0 / std::numbers::pi);
+}
+
+// Smallest and mean smallest angle over the live real triangles.
+void angle_stats(const Mesh& m, double& lo, double& mean) {
+  lo = 180.0;
+  double sum = 0;
+  std::size_t n = 0;
+  for (TriId t = 0; t < m.num_triangle_slots(); ++t) {
+    if (!m.is_real(t)) continue;
+    const auto v = m.triangle(t);
+    const double a = min_angle_of(m.point(v[0]), m.point(v[1]), m.point(v[2]));
+    lo = std::min(lo, a);
+    sum += a;
+    ++n;
+  }
+  mean = n ? sum / double(n) : 0.0;
+  if (!n) lo = 0.0;
+}
+
+class Smoother {
+ public:
+  Smoother(Mesh& mesh, const SmoothOptions& opt, SmoothStats& st) : m_(mesh), opt_(opt), st_(st) {}
+
+  void run() {
+    if (!m_.compacted()) m_.compact();
+    const std::size_t n = m_.num_vertices();
+    std::vector<VertexId> movable;
+    for (VertexId v = 0; v < n; ++v)
+      if (is_free(v)) movable.push_back(v);
+    // Flips neither create nor remove constrained or boundary edges, so the
+    // free vertices stay free.
+    for (int pass = 0; pass < opt_.passes; ++pass) {
+      std::size_t moved = 0;
+      for (VertexId v : movable) moved += try_move(v);
+      st_.moved += moved;
+      ++st_.passes;
+      // A move keeps every star triangle counter-clockwise, so the mesh stays
+      // a valid triangulation, but edges may stop being locally Delaunay.
+      // Each Lawson flip replaces two triangles by the two on the other
+      // diagonal, and when the edge is not locally Delaunay the other
+      // diagonal's pair has the larger smallest angle (Delaunay maximises the
+      // smallest angle over the two triangulations of a convex
+      // quadrilateral). So the flips never lower the mesh's smallest angle:
+      // with the move guard, it never decreases.
+      st_.flips += detail::constrained_lawson_flips(m_);
+      if (moved == 0) break;
+    }
+  }
+
+ private:
+  bool is_free(VertexId v) const {
+    if (v < opt_.protect_first || m_.out_edge(v) == kNone) return false;
+    const auto& mk = m_.vertex_markers();
+    if (v < mk.size() && mk[v] != 0) return false;  // a point with a marker of its own matters
+    const HalfEdgeId start = m_.out_edge(v);
+    HalfEdgeId e = start;
+    std::size_t degree = 0;
+    do {
+      if (m_.is_constrained(e) || ++degree > kMaxDegree) return false;
+      e = m_.rotate_ccw(e);
+    } while (e != kNone && e != start);
+    return e == start;  // kNone: on the boundary
+  }
+
+  double h_at(double x, double y) const {
+    if (!opt_.h) return -1.0;
+    const double v = opt_.h(x, y);
+    return v > 0 && std::isfinite(v) ? v : -1.0;
+  }
+
+  // The star of v with v at q: smallest angle, worst longest-edge / h and
+  // worst area / max_area (0 without a bound). False when a triangle does
+  // not turn left (exact).
+  struct Quality {
+    double angle = 180.0, size = 0.0, area = 0.0;
+  };
+  bool quality(const Point& q, Quality& out) const {
+    const std::size_t k = link_.size();
+    for (std::size_t i = 0; i < k; ++i) {
+      const Point &a = m_.point(link_[i]), &b = m_.point(link_[(i + 1) % k]);
+      if (!(orient2d(q, a, b) > 0)) return false;
+      out.angle = std::min(out.angle, min_angle_of(q, a, b));
+      if (opt_.h) {
+        const double h = h_at((q.x + a.x + b.x) / 3, (q.y + a.y + b.y) / 3);
+        if (h > 0) out.size = std::max(out.size, std::max({dist(q, a), dist(a, b), dist(b, q)}) / h);
+      }
+      if (opt_.max_area > 0)
+        out.area = std::max(out.area, 0.5 * ((a.x - q.x) * (b.y - q.y) - (a.y - q.y) * (b.x - q.x)) / opt_.max_area);
+    }
+    return true;
+  }
+
+  bool target(const Point& p, Point& t) const {
+    const std::size_t k = link_.size();
+    double sx = 0, sy = 0, sw = 0;
+    for (std::size_t i = 0; i < k; ++i) {
+      const Point &a = m_.point(link_[i]), &b = m_.point(link_[(i + 1) % k]);
+      if (opt_.target == SmoothTarget::Laplacian) {
+        sx += a.x;
+        sy += a.y;
+        sw += 1;
+        continue;
+      }
+      // Circumcentre of (p, a, b) relative to p, weighted by the area.
+      const double bx = a.x - p.x, by = a.y - p.y, cx = b.x - p.x, cy = b.y - p.y;
+      const double d = 2 * (bx * cy - by * cx);
+      if (!(d > 0)) return false;
+      const double b2 = bx * bx + by * by, c2 = cx * cx + cy * cy;
+      const double ux = (cy * b2 - by * c2) / d, uy = (bx * c2 - cx * b2) / d;
+      double w = d / 4;  // area
+      const double h = h_at(p.x + (bx + cx) / 3, p.y + (by + cy) / 3);
+      if (h > 0) w /= (h * h) * (h * h);  // density h^-4: optimal 2D meshes have edges ~ density^(-1/4)
+      sx += w * (p.x + ux);
+      sy += w * (p.y + uy);
+      sw += w;
+    }
+    if (!(sw > 0)) return false;
+    t = {sx / sw, sy / sw};
+    return std::isfinite(t.x) && std::isfinite(t.y);
+  }
+
+  // 1 when v moved.
+  std::size_t try_move(VertexId v) {
+    link_.clear();
+    m_.for_each_out_edge(v, [&](HalfEdgeId e) {
+      link_.push_back(m_.dest(e));
+      return true;
+    });
+    const Point p = m_.point(v);
+    Point t;
+    if (!target(p, t) || (t.x == p.x && t.y == p.y)) return 0;
+    Quality before;
+    quality(p, before);
+    const double angle_floor = opt_.min_angle_deg < 0 ? before.angle : std::min(before.angle, opt_.min_angle_deg);
+    for (const double step : {1.0, 0.5}) {
+      const Point q{p.x + step * (t.x - p.x), p.y + step * (t.y - p.y)};
+      Quality after;
+      if (!quality(q, after) || !(after.angle >= angle_floor) || !(after.size <= std::max(1.0, before.size)) ||
+          !(after.area <= std::max(1.0, before.area)))
+        continue;
+      m_.points_mut()[v] = q;
+      return 1;
+    }
+    ++st_.rejected;
+    return 0;
+  }
+
+  Mesh& m_;
+  const SmoothOptions& opt_;
+  SmoothStats& st_;
+  std::vector<VertexId> link_;
+};
+
 // Sizes at the vertices of a copy of a background mesh.
 class BackgroundField {
  public:
@@ -509,6 +671,27 @@ std::string CoarsenStats::summary() const {
   return buf;
 }
 
+std::string SmoothStats::summary() const {
+  char buf[320];
+  std::snprintf(buf, sizeof buf,
+                "%zu moves in %zu passes (%zu refused), %zu flips; smallest angle %.2f -> %.2f deg, mean smallest "
+                "angle %.2f -> %.2f deg, %.3f s",
+                moved, passes, rejected, flips, min_angle_before, min_angle_after, mean_min_angle_before,
+                mean_min_angle_after, seconds);
+  return buf;
+}
+
+SmoothStats smooth(Mesh& mesh, const SmoothOptions& options) {
+  const auto t0 = Clock::now();
+  SmoothStats st;
+  if (!mesh.compacted()) mesh.compact();
+  angle_stats(mesh, st.min_angle_before, st.mean_min_angle_before);
+  Smoother(mesh, options, st).run();
+  angle_stats(mesh, st.min_angle_after, st.mean_min_angle_after);
+  st.seconds = seconds_since(t0);
+  return st;
+}
+
 std::string AdaptStats::summary() const {
   char buf[256];
   std::snprintf(buf, sizeof buf, "%zu vertices removed, %zu inserted, %zu triangles%s, %.3f s", removed, inserted,
@@ -544,6 +727,33 @@ AdaptStats adapt(Mesh& mesh, const SizeField& h, const AdaptOptions& options) {
     };
   }
   st.refine = refine(mesh, r);
+  // A moved vertex may encroach a segment: no smoothing of conforming meshes.
+  if (options.smooth_passes > 0 && mesh.num_triangles() > 0 && !options.refine.conforming_delaunay) {
+    SmoothOptions so;
+    so.passes = options.smooth_passes;
+    so.h = h;
+    so.max_area = options.refine.max_area;
+    so.protect_first = options.coarsen.protect_first;
+    st.smooth = smooth(mesh, so);
+    // A flip may lengthen an edge (the new diagonal), and a move only keeps
+    // its star's smallest angle, which may be below the angle bound already:
+    // refine the few triangles left outside the bounds.
+    if (st.refine.complete) {
+      const RefineStats again = refine(mesh, r);
+      st.resplit = again.steiner_points;
+      st.refine.steiner_points += again.steiner_points;
+      st.refine.segment_splits += again.segment_splits;
+      st.refine.interior_points += again.interior_points;
+      st.refine.offcenters += again.offcenters;
+      st.refine.complete = again.complete;
+      st.refine.budget_exhausted = again.budget_exhausted;
+      st.refine.time_exhausted = again.time_exhausted;
+      st.refine.below_bound = again.below_bound;
+      st.refine.too_large = again.too_large;
+      st.refine.too_large_precision = again.too_large_precision;
+      st.refine.seconds += again.seconds;
+    }
+  }
   st.removed = st.coarsen.removed;
   st.inserted = st.refine.steiner_points;
   st.triangles = mesh.num_triangles();
