@@ -883,6 +883,91 @@ py::dict triangulate_dict(const py::dict& tri, const std::string& opts, py::obje
   return run(read_input(arrays_from_dict(tri)), o, std::move(max_area_fn), std::move(max_edge_fn));
 }
 
+// adapt(mesh, size, opts): the mesh rebuilt as for 'r' (with 'p' when it has
+// segments), then coarsened and refined to the size field (and smoothed).
+py::dict adapt_dict(const py::dict& tri, py::object size, const std::string& opts, int smooth) {
+  Input in = read_input(arrays_from_dict(tri));
+  if (!in.has_triangles) throw py::value_error("adapt: the mesh needs 'triangles' (and 'vertices')");
+  Options o = parse_switches(opts);
+  if (o.refine || o.order == 2 || o.conforming_delaunay)
+    throw py::value_error("adapt: switches r, o2 and D do not apply (the mesh is always rebuilt and refined)");
+  if (smooth < 0) throw py::value_error("adapt: smooth must be >= 0 passes");
+  o.refine = true;
+  o.poly = o.poly || in.has_segments;
+  const bool check = o.check;
+  o.check = false;
+  // The size field: a function of (x, y), or one size per given vertex.
+  SizeCallback fn{py::none(), "size", {}, {}};
+  std::vector<double> sizes;
+  if (PyCallable_Check(size.ptr())) {
+    fn.fn = size;
+  } else {
+    const Doubles d = to_doubles(size, "size", 1);
+    if (d.rows != in.pslg.points.size())
+      throw py::value_error("size: has " + std::to_string(d.rows) + " values, expected one per vertex (" +
+                            std::to_string(in.pslg.points.size()) + ")");
+    sizes = d.v;
+  }
+  dm::AdaptOptions aopt;
+  aopt.refine = dm::cli::refine_options(o);
+  aopt.smooth_passes = smooth;
+  RunResult res;
+  dm::AdaptStats st;
+  std::string size_error;
+  {
+    py::gil_scoped_release nogil;
+    run_pipeline(in, o, nullptr, res);
+    dm::SizeField h = fn.make();
+    if (!h) {
+      if (res.mesh.num_vertices() != sizes.size())
+        size_error = "size: per-vertex sizes need the mesh's segments to be edges of its triangles already (" +
+                     std::to_string(res.mesh.num_vertices() - sizes.size()) + " vertices were added inserting them)";
+      else
+        h = dm::size_field_from_vertices(res.mesh, sizes);
+    }
+    if (h) {
+      dm::make_constrained_delaunay(res.mesh);
+      st = dm::adapt(res.mesh, h, aopt);
+      dm::finish_vertex_markers(res.mesh);
+    }
+  }
+  fn.rethrow();
+  if (!size_error.empty()) throw py::value_error(size_error);
+  res.stats.refine = st.refine;
+  res.refined = true;
+  if (check) {
+    dm::CheckOptions co;
+    co.convex_hull = false;
+    const dm::CheckReport report = dm::check(res.mesh, co);
+    res.check_summary = report.summary();
+    if (!report.ok()) {
+      py::list problems;
+      for (const std::string& p : report.problems) problems.append(p);
+      raise_with(g_exc.check, "-C: " + res.check_summary, {{"problems", problems}});
+      throw py::error_already_set();
+    }
+  }
+  o.check = check;
+  py::dict out = mesh_dict(res.mesh, o, in, res);
+  py::dict stats = stats_dict(res.mesh, o, res);
+  py::dict a;
+  a["removed"] = st.removed;
+  a["inserted"] = st.inserted;
+  a["smoothed"] = st.smooth.moved;
+  a["resplit"] = st.resplit;
+  a["triangles"] = st.triangles;
+  a["complete"] = st.complete;
+  a["seconds"] = st.seconds;
+  a["summary"] = st.summary();
+  stats["adapt"] = a;
+  out["stats"] = stats;
+  if (!o.quiet && !st.complete) {
+    const std::string msg = "deltamesh: adaptation stopped before the requested quality: " + st.refine.summary();
+    if (PyErr_WarnEx(PyExc_UserWarning, msg.c_str(), 2) < 0) throw py::error_already_set();
+  }
+  return out;
+}
+
 py::dict triangulate_kw(py::object vertices, py::object segments, py::object holes, py::object regions,
                         py::object vertex_markers, py::object vertex_attributes, py::object segment_markers,
                         py::object triangles, py::object triangle_attributes, py::object triangle_max_area,
@@ -1275,6 +1360,19 @@ encroachment, order, time_limit are the command line's long options.
 max_area_fn(x, y) / max_edge_fn(x, y): size functions evaluated at triangle
 centroids (<= 0: no bound there); they refine like max_area.)");
 
+  m.def("adapt", &adapt_dict, py::arg("mesh"), py::arg("size"), py::arg("opts") = "q", py::kw_only(),
+        py::arg("smooth") = 2,
+        R"(adapt(mesh: dict, size, opts: str = 'q', *, smooth: int = 2) -> dict.
+
+Mesh adaptation (docs/adapt.md): coarsens where the mesh is finer than the
+target edge length and refines where it is coarser, then smooths `smooth`
+passes. mesh is a result of triangulate() (or the same keys: vertices,
+triangles, and optionally segments, markers, attributes, holes); size is a
+function h(x, y) -> target edge length (<= 0: no target there) or an array
+of one size per vertex (interpolated linearly over the mesh, as a TetGen
+.mtr file). opts: refinement switches as for triangulate ('q30', 'a0.01',
+'S1000', 'C'...). The result has triangulate()'s keys; stats['adapt'] holds
+removed, inserted, smoothed, triangles, complete.)");
   m.def("delaunay", &delaunay_triangles, py::arg("vertices"),
         "Delaunay triangulation of points: the (M, 3) int32 triangles (counter-clockwise) of triangulate({'vertices': "
         "v}).");

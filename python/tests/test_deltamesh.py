@@ -451,6 +451,62 @@ class DictAndKeywords(unittest.TestCase):
             self.assert_same(r, expected)
 
 
+class Adapt(unittest.TestCase):
+    def setUp(self):
+        self.fine = deltamesh.triangulate(square_with_hole(), "pq30a0.0002Q")
+
+    def test_grades_a_fine_mesh_to_a_ramp(self):
+        ramp = lambda x, y: 0.01 + 0.19 * x
+        r = deltamesh.adapt(self.fine, ramp, "q30")
+        deltamesh.validate(r, convex_hull=False)
+        a = r["stats"]["adapt"]
+        self.assertTrue(a["complete"])
+        self.assertGreater(a["removed"], 0)
+        self.assertLess(len(r["triangles"]), len(self.fine["triangles"]) / 2)
+        self.assertGreaterEqual(min_angles(r).min(), 30 - 1e-9)
+        self.assertAlmostEqual(areas(r).sum(), 0.96, places=12)
+        # Finer on the left than on the right: mean area per strip grows with x.
+        c = centroids(r)
+        left, right = areas(r)[c[:, 0] < 0.2].mean(), areas(r)[c[:, 0] > 0.8].mean()
+        self.assertGreater(right, 10 * left)
+        # Segment markers of the input stay on its pieces.
+        self.assertEqual(set(r["segment_markers"][:, 0]), {5, 7})
+
+    def test_sizes_per_vertex_equal_the_function_at_the_vertices(self):
+        v = self.fine["vertices"]
+        by_array = deltamesh.adapt(self.fine, 0.01 + 0.19 * v[:, 0], "q30")
+        by_function = deltamesh.adapt(self.fine, lambda x, y: 0.01 + 0.19 * x, "q30")
+        deltamesh.validate(by_array, convex_hull=False)
+        # Linear in x: interpolation over the triangles is exact (to rounding).
+        self.assertLess(abs(len(by_array["triangles"]) - len(by_function["triangles"])),
+                        0.02 * len(by_function["triangles"]))
+
+    def test_smoothing_raises_the_mean_angle(self):
+        h = lambda x, y: 0.05
+        rough = deltamesh.adapt(self.fine, h, "q30", smooth=0)
+        smooth = deltamesh.adapt(self.fine, h, "q30", smooth=3)
+        deltamesh.validate(smooth, convex_hull=False)
+        self.assertEqual(rough["stats"]["adapt"]["smoothed"], 0)
+        self.assertGreater(smooth["stats"]["adapt"]["smoothed"], 0)
+        self.assertGreater(min_angles(smooth).mean(), min_angles(rough).mean())
+        self.assertGreaterEqual(min_angles(smooth).min(), 30 - 1e-9)
+
+    def test_bad_sizes_and_switches(self):
+        v = self.fine["vertices"]
+        with self.assertRaisesRegex(ValueError, "size: has 3 values, expected one per vertex"):
+            deltamesh.adapt(self.fine, [1.0, 2.0, 3.0])
+        with self.assertRaisesRegex(deltamesh.InputError, "not a positive number"):
+            deltamesh.adapt(self.fine, -np.ones(len(v)))
+        with self.assertRaisesRegex(ValueError, "size returned nan"):
+            deltamesh.adapt(self.fine, lambda x, y: math.nan)
+        with self.assertRaisesRegex(ZeroDivisionError, "division"):
+            deltamesh.adapt(self.fine, lambda x, y: 1 / 0)
+        with self.assertRaisesRegex(ValueError, "switches r, o2 and D"):
+            deltamesh.adapt(self.fine, lambda x, y: 0.1, "rq30")
+        with self.assertRaisesRegex(ValueError, "needs 'triangles'"):
+            deltamesh.adapt(square_with_hole(), lambda x, y: 0.1)
+
+
 class Gil(unittest.TestCase):
     def test_gil_is_released_while_meshing(self):
         """The main thread runs Python while another thread meshes (~0.3 s): with
