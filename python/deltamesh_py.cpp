@@ -392,6 +392,9 @@ Options parse_switches(const std::string& opts) {
       std::string tok = opts.substr(i, j - i);
       if (tok.rfind("--", 0) == 0) {
         const std::string name = tok.substr(0, tok.find('='));
+        if (name == "--adapt" || name == "--smooth")
+          throw py::value_error("option " + name + " in '" + opts +
+                                "': use deltamesh.adapt(mesh, size, opts, smooth=N) (smooth=0 for none)");
         if (std::find(std::begin(kLongOptions), std::end(kLongOptions), name) == std::end(kLongOptions))
           throw py::value_error(
               "option " + name + " in '" + opts +

@@ -505,6 +505,8 @@ class Adapt(unittest.TestCase):
             deltamesh.adapt(self.fine, lambda x, y: 0.1, "rq30")
         with self.assertRaisesRegex(ValueError, "needs 'triangles'"):
             deltamesh.adapt(square_with_hole(), lambda x, y: 0.1)
+        with self.assertRaisesRegex(ValueError, "use deltamesh.adapt"):
+            deltamesh.triangulate(square_with_hole(), "pq30 --smooth=2")
 
 
 class Gil(unittest.TestCase):
