@@ -65,17 +65,7 @@ dm::Mesh mesh_of(const dm::Pslg& g, std::optional<dm::RefineOptions> r) {
   return dm::triangulate(g, o);
 }
 
-// Topology, orientation, constrained Delaunay, and every input segment a
-// chain of constrained edges (input vertices keep their ids 0..9: they are
-// never removed and come first).
-void expect_valid(const dm::Mesh& m, const dm::Pslg& g) {
-  dm::CheckOptions co;
-  co.convex_hull = false;
-  co.pslg = &g;
-  const dm::CheckReport rep = dm::check(m, co);
-  EXPECT_TRUE(rep.ok()) << rep.summary();
-  EXPECT_EQ(rep.segments_checked, g.segments.size());
-}
+// (Input vertices keep their ids 0..9: they are never removed and come first.)
 
 std::size_t used_vertices(const dm::Mesh& m) {
   std::vector<char> used(m.num_vertices(), 0);
@@ -106,12 +96,12 @@ dm::SizeField ramp() {
 TEST(Adapt, GradesAFineMeshToARamp) {
   const dm::Pslg g = domain();
   dm::Mesh m = mesh_of(g, quality(30, 5e-5));
-  expect_valid(m, g);
+  dm::test::expect_valid_with_pslg(m, g);
   const std::size_t before = used_vertices(m);
   ASSERT_GT(before, 8000u);
   const dm::SizeField h = ramp();
   const dm::AdaptStats st = dm::adapt(m, h, adapt_options(30));
-  expect_valid(m, g);
+  dm::test::expect_valid_with_pslg(m, g);
   EXPECT_TRUE(st.complete) << st.refine.summary();
   const std::size_t after = used_vertices(m);
   EXPECT_GT(st.removed, before / 2);
@@ -145,7 +135,7 @@ TEST(Coarsen, KeepsCornersSegmentsAndHoles) {
   dm::Mesh m = mesh_of(g, quality(25, 2e-4));
   const std::size_t before = used_vertices(m);
   const dm::CoarsenStats st = dm::coarsen(m, [](double, double) { return 0.15; });
-  expect_valid(m, g);
+  dm::test::expect_valid_with_pslg(m, g);
   EXPECT_EQ(st.removed + used_vertices(m), before);
   EXPECT_GT(st.removed, before / 2);
   EXPECT_GT(st.removed_on_segments, 20u);
@@ -180,7 +170,7 @@ TEST(Coarsen, AFieldLargerThanTheDomainGivesBackTheInputCdt) {
   dm::Mesh m = mesh_of(g, quality(30, 1e-3));
   ASSERT_GT(used_vertices(m), 300u);
   const dm::CoarsenStats st = dm::coarsen(m, [](double, double) { return 100.0; });
-  expect_valid(m, g);
+  dm::test::expect_valid_with_pslg(m, g);
   EXPECT_EQ(st.refused, 0u);
   EXPECT_EQ(used_vertices(m), g.points.size());
   EXPECT_EQ(m.num_triangles(), cdt.num_triangles());
@@ -194,7 +184,7 @@ TEST(Coarsen, ProtectedVerticesAndNoFieldStay) {
   EXPECT_EQ(used_vertices(m), before);
   dm::coarsen(m, [](double, double) { return 100.0; }, protect(before));
   EXPECT_EQ(used_vertices(m), before);
-  expect_valid(m, g);
+  dm::test::expect_valid_with_pslg(m, g);
 }
 
 // A vertex marker of its own (one the vertex would not get from its segments)
@@ -208,7 +198,7 @@ TEST(Coarsen, VerticesWithTheirOwnMarkersStay) {
   dm::Mesh m = mesh_of(g, quality(30, 2e-3));
   ASSERT_GT(used_vertices(m), 200u);
   const dm::CoarsenStats st = dm::coarsen(m, [](double, double) { return 100.0; });
-  expect_valid(m, g);
+  dm::test::expect_valid_with_pslg(m, g);
   EXPECT_GT(st.removed, 150u);
   auto find = [&](dm::Point p) {
     for (dm::VertexId v = 0; v < m.num_vertices(); ++v)
@@ -243,7 +233,7 @@ TEST(Coarsen, VerticesWithTheirOwnMarkersStay) {
   ASSERT_GT(used_vertices(m), 200u);
   dm::coarsen(m, [](double, double) { return 100.0; });
   g.segments.clear();  // (the boundary is checked as the mesh's own)
-  expect_valid(m, g);
+  dm::test::expect_valid_with_pslg(m, g);
   const dm::VertexId v = find({0.5, 0});
   ASSERT_NE(v, dm::kNone);
   EXPECT_EQ(m.vertex_markers()[v], 7);
@@ -270,7 +260,7 @@ TEST(Coarsen, AHubOfHugeDegreeDoesNotMakeItQuadratic) {
   EXPECT_EQ(used_vertices(m), 3u);
   dm::Pslg outline;
   outline.points = {m.point(0), m.point(1), m.point(2)};
-  expect_valid(m, outline);
+  dm::test::expect_valid_with_pslg(m, outline);
 }
 
 // A grid's Delaunay triangulation (all cocircular) has vertices of degree 4
@@ -301,11 +291,11 @@ TEST(Coarsen, GridVerticesOnTheirLinksDiagonalsGo) {
   EXPECT_EQ(used_vertices(m), 4u);
   EXPECT_EQ(m.num_triangles(), 2u);
   dm::Pslg corners;
-  expect_valid(m, corners);
+  dm::test::expect_valid_with_pslg(m, corners);
   // Graded: a field of 5 to 10 grid steps leaves about (k / 7)^2 vertices, not a third of them.
   dm::Mesh f = dm::triangulate(g, points_only);
   const dm::AdaptStats as = dm::adapt(f, [](double x, double) { return 5 * (1 + x / k); }, adapt_options(25));
-  expect_valid(f, corners);
+  dm::test::expect_valid_with_pslg(f, corners);
   EXPECT_EQ(as.coarsen.refused, 0u);
   EXPECT_LT(as.coarsen.vertices_after, std::size_t{k * k / 8});
 }
@@ -313,23 +303,23 @@ TEST(Coarsen, GridVerticesOnTheirLinksDiagonalsGo) {
 TEST(Adapt, RefineCoarsenRefineRoundTrip) {
   const dm::Pslg g = domain();
   dm::Mesh m = mesh_of(g, quality(30, 2e-4));
-  expect_valid(m, g);
+  dm::test::expect_valid_with_pslg(m, g);
   const std::size_t fine = used_vertices(m);
   const dm::SizeField coarse = [](double x, double y) { return 0.05 + 0.1 * (x + y); };
   dm::coarsen(m, coarse);
-  expect_valid(m, g);
+  dm::test::expect_valid_with_pslg(m, g);
   const std::size_t coarsened = used_vertices(m);
   EXPECT_LT(coarsened * 2, fine);
   dm::RefineOptions r = quality(30, -1);
   r.max_edge_at = coarse;
   const dm::RefineStats rs = dm::refine(m, r);
   EXPECT_TRUE(rs.complete);
-  expect_valid(m, g);
+  dm::test::expect_valid_with_pslg(m, g);
   EXPECT_GE(dm::test::min_angle_deg(m), 30.0 - 1e-9);
   // Adapting again to the same field changes little.
   const std::size_t once = used_vertices(m);
   dm::adapt(m, coarse, adapt_options(30));
-  expect_valid(m, g);
+  dm::test::expect_valid_with_pslg(m, g);
   EXPECT_LT(used_vertices(m), once * 3 / 2);
   EXPECT_GT(used_vertices(m) * 3 / 2, once);
 }
@@ -451,7 +441,7 @@ TEST_F(AdaptCli, AdaptsToMtrSizes) {
   const dm::Pslg g = dm::read_poly(path("box.poly"));
   out.segments = g.segments;
   const dm::Mesh m = dm::mesh_from_triangles(out, ele.triangles, ele.num_attributes, ele.attributes);
-  expect_valid(m, g);
+  dm::test::expect_valid_with_pslg(m, g);
   EXPECT_GE(dm::test::min_angle_deg(m), 30.0 - 1e-9);
   EXPECT_NEAR(area(m), 0.96, 1e-12);
 }

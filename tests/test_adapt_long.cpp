@@ -38,16 +38,6 @@ void expect_valid(const dm::Mesh& m, const dm::Pslg* g, bool cdt_valid) {
   }
 }
 
-double covered_area(const dm::Mesh& m) {
-  double a = 0;
-  for (dm::TriId t = 0; t < m.num_triangle_slots(); ++t) {
-    if (!m.is_real(t)) continue;
-    const auto v = m.triangle(t);
-    const dm::Point &p = m.point(v[0]), &q = m.point(v[1]), &r = m.point(v[2]);
-    a += 0.5 * ((q.x - p.x) * (r.y - p.y) - (q.y - p.y) * (r.x - p.x));
-  }
-  return a;
-}
 
 }  // namespace
 
@@ -74,7 +64,7 @@ TEST(AdaptLong, FineBoxToARamp) {
   EXPECT_LT(m.num_triangles(), before / 15);
   EXPECT_GT(m.num_triangles(), 3'000u);
   EXPECT_GE(dm::test::min_angle_deg(m), 30.0 - 1e-9);
-  EXPECT_NEAR(covered_area(m), 0.96, 1e-12);
+  EXPECT_NEAR(dm::test::covered_area(m), 0.96, 1e-12);
 }
 
 TEST(AdaptLong, CorpusFilesCoarsenAndAdapt) {
@@ -121,7 +111,7 @@ TEST(AdaptLong, CorpusFilesCoarsenAndAdapt) {
         r.min_angle_deg = 25;
         r.max_steiner = 200'000;
         dm::refine(m, r);
-        const double area = covered_area(m);
+        const double area = dm::test::covered_area(m);
         // Crossing or overlapping input segments are split and merged, so
         // some files' refined meshes do not show every PSLG segment as given;
         // the protected check then compares with the refined mesh's state.
@@ -136,7 +126,7 @@ TEST(AdaptLong, CorpusFilesCoarsenAndAdapt) {
         }
         const dm::CoarsenStats cs = dm::coarsen(m, h, co);
         expect_valid(m, protect ? &g : nullptr, valid);
-        EXPECT_NEAR(covered_area(m), area, 1e-9 * size * size);
+        EXPECT_NEAR(dm::test::covered_area(m), area, 1e-9 * size * size);
         EXPECT_EQ(cs.vertices_before - cs.removed, cs.vertices_after);
         dm::AdaptOptions a;
         a.coarsen = co;
@@ -145,7 +135,7 @@ TEST(AdaptLong, CorpusFilesCoarsenAndAdapt) {
         a.refine.time_limit_seconds = 20;
         const dm::AdaptStats as = dm::adapt(m, h, a);
         expect_valid(m, protect ? &g : nullptr, valid);
-        EXPECT_NEAR(covered_area(m), area, 1e-9 * size * size);
+        EXPECT_NEAR(dm::test::covered_area(m), area, 1e-9 * size * size);
         ++runs;
         removed += cs.removed + as.removed;
         refused += cs.refused + as.coarsen.refused;

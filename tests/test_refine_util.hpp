@@ -1,4 +1,4 @@
-// Helpers shared by the refinement tests (test_refine*.cpp).
+// Helpers shared by the refinement and adaptation tests.
 #pragma once
 #include <gtest/gtest.h>
 
@@ -11,6 +11,7 @@
 #include "deltamesh/delaunay.hpp"
 #include "deltamesh/mesh.hpp"
 #include "deltamesh/predicates.hpp"
+#include "deltamesh/pslg.hpp"
 #include "deltamesh/validate.hpp"
 
 namespace deltamesh::test {
@@ -54,6 +55,29 @@ inline double min_angle_deg(const Mesh& mesh) {
     }
   }
   return lo;
+}
+
+// Valid (topology, orientation, constrained Delaunay) and every segment of g
+// a chain of constrained edges between its vertices (ids unchanged).
+inline void expect_valid_with_pslg(const Mesh& mesh, const Pslg& g) {
+  CheckOptions co;
+  co.convex_hull = false;
+  co.pslg = &g;
+  const CheckReport rep = check(mesh, co);
+  EXPECT_TRUE(rep.ok()) << rep.summary();
+  EXPECT_EQ(rep.segments_checked, g.segments.size());
+}
+
+// The area the live triangles cover.
+inline double covered_area(const Mesh& mesh) {
+  double a = 0;
+  for (TriId t = 0; t < mesh.num_triangle_slots(); ++t) {
+    if (!mesh.is_real(t)) continue;
+    const auto v = mesh.triangle(t);
+    const Point &p = mesh.point(v[0]), &q = mesh.point(v[1]), &r = mesh.point(v[2]);
+    a += 0.5 * ((q.x - p.x) * (r.y - p.y) - (q.y - p.y) * (r.x - p.x));
+  }
+  return a;
 }
 
 inline void expect_valid(const Mesh& mesh, bool convex) {

@@ -46,14 +46,6 @@ dm::Mesh refined(const dm::Pslg& g, double angle, double max_area) {
   return dm::triangulate(g, o);
 }
 
-void expect_valid(const dm::Mesh& m, const dm::Pslg& g) {
-  dm::CheckOptions co;
-  co.convex_hull = false;
-  co.pslg = &g;
-  const dm::CheckReport rep = dm::check(m, co);
-  EXPECT_TRUE(rep.ok()) << rep.summary();
-  EXPECT_EQ(rep.segments_checked, g.segments.size());
-}
 
 double tri_min_angle(const dm::Mesh& m, dm::TriId t) {
   const auto v = m.triangle(t);
@@ -77,16 +69,6 @@ double mean_min_angle(const dm::Mesh& m) {
   return s / double(n);
 }
 
-double area(const dm::Mesh& m) {
-  double a = 0;
-  for (dm::TriId t = 0; t < m.num_triangle_slots(); ++t) {
-    if (!m.is_real(t)) continue;
-    const auto v = m.triangle(t);
-    const dm::Point &p = m.point(v[0]), &q = m.point(v[1]), &r = m.point(v[2]);
-    a += 0.5 * ((q.x - p.x) * (r.y - p.y) - (q.y - p.y) * (r.x - p.x));
-  }
-  return a;
-}
 
 // Vertices on a constrained edge or the boundary.
 std::vector<char> on_segments(const dm::Mesh& m) {
@@ -116,14 +98,14 @@ double worst_size(const dm::Mesh& m, const dm::SizeField& h) {
 TEST(Smooth, KeepsAValidCdtRaisesTheMeanAngleAndFixesSegmentVertices) {
   const dm::Pslg g = domain();
   dm::Mesh m = refined(g, 30, 5e-4);
-  expect_valid(m, g);
+  dm::test::expect_valid_with_pslg(m, g);
   const dm::Mesh before = m;
-  const double lo = dm::test::min_angle_deg(m), mean = mean_min_angle(m), a = area(m);
+  const double lo = dm::test::min_angle_deg(m), mean = mean_min_angle(m), a = dm::test::covered_area(m);
   ASSERT_GE(lo, 30.0 - 1e-9);
   dm::SmoothOptions so;
   so.protect_first = g.points.size();
   const dm::SmoothStats st = dm::smooth(m, so);
-  expect_valid(m, g);
+  dm::test::expect_valid_with_pslg(m, g);
   EXPECT_EQ(m.num_triangles(), before.num_triangles());
   EXPECT_EQ(st.passes, 3u);
   EXPECT_GT(st.moved, m.num_vertices() / 2) << st.summary();
@@ -131,7 +113,7 @@ TEST(Smooth, KeepsAValidCdtRaisesTheMeanAngleAndFixesSegmentVertices) {
   // Measured 47.5 -> 50.5 degrees.
   EXPECT_GT(mean_min_angle(m), mean + 1.5) << st.summary();
   EXPECT_NEAR(st.mean_min_angle_after, mean_min_angle(m), 1e-9);
-  EXPECT_NEAR(area(m), a, 1e-12);
+  EXPECT_NEAR(dm::test::covered_area(m), a, 1e-12);
   // Segment, boundary and input vertices (the lone point 10 too) stay where
   // they were, exactly; only the others moved.
   const std::vector<char> fixed = on_segments(before);
@@ -162,7 +144,7 @@ TEST(Smooth, ProtectedAndMarkedVerticesStay) {
   dm::SmoothOptions so;
   so.protect_first = protect;
   const dm::SmoothStats st = dm::smooth(m, so);
-  expect_valid(m, g);
+  dm::test::expect_valid_with_pslg(m, g);
   EXPECT_GT(st.moved, 0u);
   std::size_t moved_above = 0;
   for (dm::VertexId v = 0; v < m.num_vertices(); ++v) {
@@ -192,10 +174,10 @@ TEST(Smooth, BothTargetsKeepTheGuards) {
     so.passes = 5;
     so.protect_first = g.points.size();
     const dm::SmoothStats st = dm::smooth(m, so);
-    expect_valid(m, g);
+    dm::test::expect_valid_with_pslg(m, g);
     EXPECT_GE(dm::test::min_angle_deg(m), lo - 1e-9);
     EXPECT_GT(mean_min_angle(m), mean) << st.summary();
-    EXPECT_NEAR(area(m), 1.0 - 0.04, 1e-12);
+    EXPECT_NEAR(dm::test::covered_area(m), 1.0 - 0.04, 1e-12);
   }
 }
 
@@ -208,7 +190,7 @@ TEST(Smooth, AnAngleFloorLetsStarsGiveWayAboveIt) {
   const dm::SmoothStats a = dm::smooth(strict, so);
   so.min_angle_deg = 30;
   const dm::SmoothStats b = dm::smooth(floored, so);
-  expect_valid(floored, g);
+  dm::test::expect_valid_with_pslg(floored, g);
   // Stars may lose angle above 30 degrees, never below.
   EXPECT_GE(dm::test::min_angle_deg(floored), 30.0 - 1e-9);
   EXPECT_GT(b.moved, a.moved) << a.summary() << "\n" << b.summary();
@@ -235,7 +217,7 @@ TEST(Smooth, ASizeFieldIsRespected) {
   so.h = h;
   so.protect_first = g.points.size();
   const dm::SmoothStats st = dm::smooth(m, so);
-  expect_valid(m, g);
+  dm::test::expect_valid_with_pslg(m, g);
   EXPECT_GT(st.moved, 100u);
   EXPECT_LE(worst_size(m, h), std::max(1.0, w) + 1e-12) << st.summary();
   // Unguarded, the moves make some triangle too large for h: the guard
@@ -258,12 +240,12 @@ TEST(Smooth, AdaptSmoothsAndStillMeetsTheRefineBound) {
     a.smooth_passes = passes;
     a.coarsen.protect_first = g.points.size();
     const dm::AdaptStats st = dm::adapt(m, h, a);
-    expect_valid(m, g);
+    dm::test::expect_valid_with_pslg(m, g);
     EXPECT_TRUE(st.complete) << st.refine.summary();
     EXPECT_EQ(st.smooth.passes, std::size_t(passes));
     EXPECT_GE(dm::test::min_angle_deg(m), 30.0 - 1e-9);
     EXPECT_LE(worst_size(m, h), 1.0 + 1e-12);
-    EXPECT_NEAR(area(m), 1.0 - 0.04, 1e-12);
+    EXPECT_NEAR(dm::test::covered_area(m), 1.0 - 0.04, 1e-12);
     mean[passes != 0] = mean_min_angle(m);
   }
   EXPECT_GT(mean[1], mean[0] + 1.0) << mean[0] << " -> " << mean[1];
@@ -297,9 +279,9 @@ TEST_F(SmoothCli, SmoothsAQualityMeshAndARefinedOne) {
   EXPECT_NE(r.out.find("Smoothed:"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("Check: mesh is valid"), std::string::npos) << r.out;
   const dm::Mesh s = read("s", g);
-  expect_valid(s, g);
+  dm::test::expect_valid_with_pslg(s, g);
   EXPECT_GE(dm::test::min_angle_deg(s), 30.0 - 1e-9);
-  EXPECT_NEAR(area(s), 0.96, 1e-12);
+  EXPECT_NEAR(dm::test::covered_area(s), 0.96, 1e-12);
   for (dm::VertexId v = 0; v < 8; ++v) EXPECT_EQ(s.point(v).x, g.points[v].x);
   EXPECT_GT(mean_min_angle(s), mean_min_angle(plain) + 1.0);
   // Every triangle still meets -a.
@@ -313,7 +295,7 @@ TEST_F(SmoothCli, SmoothsAQualityMeshAndARefinedOne) {
   ASSERT_EQ(r.code, 0) << r.out << r.err;
   EXPECT_NE(r.out.find("Smoothed:"), std::string::npos) << r.out;
   const dm::Mesh s2 = read("box.2", g);
-  expect_valid(s2, g);
+  dm::test::expect_valid_with_pslg(s2, g);
   EXPECT_GE(dm::test::min_angle_deg(s2), 30.0 - 1e-9);
   EXPECT_GT(mean_min_angle(s2), mean_min_angle(plain));
 }
