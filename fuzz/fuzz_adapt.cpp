@@ -77,6 +77,7 @@ struct Before {
   std::map<int, double> length;  // constrained length per marker
   double min_altitude = INFINITY;
   double diag = 0;
+  double max_abs = 0;  // largest coordinate magnitude
 };
 
 dm::Point ref_point(const dm::Mesh& m) {
@@ -161,6 +162,7 @@ Before snapshot(const dm::Mesh& m, std::size_t protect_first) {
     }
   }
   b.diag = std::hypot(hix - lox, hiy - loy);
+  b.max_abs = std::max({std::fabs(lox), std::fabs(hix), std::fabs(loy), std::fabs(hiy)});
   for (std::size_t v = 0; v < n; ++v) b.used_count += b.used[v];
   area_of(m, b.area, b.area_terms);
   b.length = constrained_length(m, &b.constrained);
@@ -324,8 +326,11 @@ void check_step(const dm::Mesh& m, const Before& b, const dm::CoarsenStats& st, 
   double area, terms;
   area_of(m, area, terms);
   const double d2 = b.diag * b.diag;
+  // Rounding of the sums; coarsen's 1e-11 collinearity tolerance per merged
+  // subsegment; a split point on a slanted segment is rounded off it by up
+  // to an ulp of the coordinates.
   const double tol = 1e-9 * std::fabs(b.area) + 1e-14 * (terms + b.area_terms) +
-                     (double(st.removed_on_segments) * 1e-11 + double(added) * 1e-15) * d2;
+                     double(st.removed_on_segments) * 1e-11 * d2 + double(added) * 1e-15 * b.max_abs * b.diag;
   if (!(std::fabs(area - b.area) <= tol))
     fz::fail(what + ": domain area " + std::to_string(b.area) + " -> " + std::to_string(area));
   std::size_t constrained = 0;

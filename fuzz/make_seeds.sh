@@ -178,14 +178,14 @@ seed_bytes_to fuzz_adapt hole_wavy_then_background.bin 98 10 18 0 12 5 8 \
   0 0 2 1 2  32 0 6
 # ulp-perturbed rectangle with collinear boundary vertices; a NaN disk in the field
 seed_bytes_to fuzz_adapt ulp_chain_nan_disk.bin 37 0 20 2 8 60 20 1 0 3 6 \
-  0 3 0 3 4 5 0 1 8 3 0 3 8 3 8 3 4 1 8 6 0 3 8 3  1 1 1 1 1 1  0 0 1 3 4 3 4 3 3
+  0 3 0 3 4 5 0 3 8 3 0 3 8 3 8 3 4 1 8 6 0 3 8 3  1 1 1 1 1 1  0 0 1 3 4 3 4 3 3
 # point set with two segments (Lawson); adapt to sizes on a background point
 # set, a random protected prefix, at most 3 removals
 seed_bytes_to fuzz_adapt points_background_adapt.bin 44 18 29 0 10 5 2 \
   0 0 10 0 10 10 0 10 2 3 7 8 5 1 3 9  0 5 2 1 6 3  130 4 2  1 0 0 10 0 0 10 10 10 8 10 6 12 0
 # square with markers changing at the corners, fine mesh; coarsen to a tiny
 # field, then to a huge one with no spoke limit
-seed_bytes_to fuzz_adapt markers_tiny_then_huge.bin 161 11 11 0 16 1 4  0 0 16 0 16 16 0 16  1 2 1 2  0 0 10  24 0 1 3
+seed_bytes_to fuzz_adapt markers_tiny_then_huge.bin 161 11 11 0 15 1 4  0 0 16 0 16 16 0 16  1 2 1 2  0 0 10  24 0 1 3
 # sizes at the vertices with a zero among them: InputError
 seed_bytes_to fuzz_adapt background_bad_size.bin 33 0 24 0 4 2 4  0 0 4 0 4 4 0 4 2 2  0 0 0 0  0 0  5 5 5 5 5 1
 RANDOM=13

@@ -702,8 +702,16 @@ std::string AdaptStats::summary() const {
 CoarsenStats coarsen(Mesh& mesh, const SizeField& h, const CoarsenOptions& options) {
   const auto t0 = Clock::now();
   CoarsenStats st;
-  if (h) Coarsener(mesh, h, options, st).run();
-  mesh.compact();
+  if (h) {
+    Coarsener(mesh, h, options, st).run();
+    mesh.compact();
+  } else {
+    // No field: nothing to remove, but the counts still describe the mesh.
+    mesh.compact();
+    for (VertexId v = 0; v < mesh.num_vertices(); ++v)
+      if (mesh.out_edge(v) != kNone) ++st.vertices_before;
+    st.vertices_after = st.vertices_before;
+  }
   if (options.renumber) st.new_id = mesh.remove_unused_vertices();
   st.seconds = seconds_since(t0);
   return st;
