@@ -123,13 +123,17 @@ std::map<int, double> constrained_length(const dm::Mesh& m, std::size_t* count) 
 }
 
 // Anchors: vertices coarsen() must keep (CoarsenOptions and adapt.hpp:
-// protected ids, where segments end, branch or bend, where markers change,
-// where the boundary touches itself). "Bend" is judged with margins above
-// coarsen's 1e-11 collinearity tolerance: a vertex more than 1e-9 (the
-// validator's chain tolerance) off the line through its constrained
-// neighbours splits chains; it must stay only when it also turns by more
-// than 1e-6, since removing neighbours can bring nearly straight vertices
-// within the tolerance of farther ones (a "soft" anchor otherwise).
+// protected ids, where segments end or branch, where markers change, where
+// the boundary touches itself, where they bend). coarsen() calls a vertex
+// straight when it is within 1e-11 of the line through its constrained
+// neighbours relative to their distance, so beside a very short edge a
+// sharp corner counts as straight, and once a neighbour goes the next one
+// may lie in another direction. So a bend makes a vertex stay only when
+// both its constrained edges are long (1e-4 of the mesh's extent: removals
+// then turn them by at most ~1e-7) and it turns by more than 1e-5 (or
+// 90 degrees); other bends of more than 1e-11 are "soft" anchors: chains
+// end there (the validator allows chain vertices 1e-9 off the segment),
+// but they may go.
 Before snapshot(const dm::Mesh& m, std::size_t protect_first) {
   Before b;
   const std::size_t n = m.num_vertices();
@@ -179,19 +183,27 @@ Before snapshot(const dm::Mesh& m, std::size_t protect_first) {
       const dm::Point &pa = m.point(a[0].w), &pv = m.point(v), &pb = m.point(a[1].w);
       const double dot = (pa.x - pv.x) * (pb.x - pv.x) + (pa.y - pv.y) * (pb.y - pv.y);
       const double o = std::fabs((pa.x - pv.x) * (pb.y - pv.y) - (pa.y - pv.y) * (pb.x - pv.x));
-      const double ab2 = (pa.x - pb.x) * (pa.x - pb.x) + (pa.y - pb.y) * (pa.y - pb.y);
       const double la = std::hypot(pa.x - pv.x, pa.y - pv.y), lb = std::hypot(pb.x - pv.x, pb.y - pv.y);
-      if (a[0].marker != a[1].marker || !(dot < 0)) {
+      const bool robust = std::min(la, lb) >= 1e-4 * b.diag;
+      if (a[0].marker != a[1].marker) {
         hard = is_anchor = true;
-      } else if (o > 1e-9 * ab2) {
+      } else if (!(dot < 0) || o > 1e-11 * la * lb) {
         is_anchor = true;
-        hard = o > 1e-6 * la * lb;
+        hard = robust && (!(dot < 0) || o > 1e-5 * la * lb);
       }
     }
     b.must_stay[v] = hard;
     anchor[v] = is_anchor;
     b.soft[v] = is_anchor && !hard;
   }
+  if (verbose())
+    for (dm::VertexId v = 0; v < n; ++v) {
+      if (adj[v].empty()) continue;
+      std::fprintf(stderr, "  before %u (%.17g, %.17g)%s%s:", static_cast<unsigned>(v), m.point(v).x, m.point(v).y,
+                   b.must_stay[v] ? " must stay" : "", b.soft[v] ? " soft" : "");
+      for (const Link& l : adj[v]) std::fprintf(stderr, " %u/%d", static_cast<unsigned>(l.w), l.marker);
+      std::fprintf(stderr, "\n");
+    }
   // Chains from each anchor through non-anchors with two constrained
   // neighbours, to the next anchor (each once: from its smaller end).
   for (dm::VertexId s = 0; s < n; ++s) {
@@ -300,6 +312,17 @@ void check_step(const dm::Mesh& m, const Before& b, const dm::CoarsenStats& st, 
       continue;
     }
     chains.segments.push_back({a, c, s.marker});
+  }
+  if (verbose()) {  // the chains and, after the step, the constrained edges at their vertices
+    for (const dm::Segment& s : chains.segments)
+      std::fprintf(stderr, "  chain %u (%.17g, %.17g) - %u (%.17g, %.17g) marker %d\n", static_cast<unsigned>(s.a),
+                   m.point(s.a).x, m.point(s.a).y, static_cast<unsigned>(s.b), m.point(s.b).x, m.point(s.b).y, s.marker);
+    for (dm::HalfEdgeId e = 0; e < 3 * m.num_triangle_slots(); ++e)
+      if (m.is_real(e / 3) && (m.twin(e) == dm::kNone || (m.is_constrained(e) && m.origin(e) < m.dest(e))))
+        std::fprintf(stderr, "  constrained %u (%.17g, %.17g) - %u (%.17g, %.17g) marker %d%s\n",
+                     static_cast<unsigned>(m.origin(e)), m.point(m.origin(e)).x, m.point(m.origin(e)).y,
+                     static_cast<unsigned>(m.dest(e)), m.point(m.dest(e)).x, m.point(m.dest(e)).y, m.edge_marker(e),
+                     m.twin(e) == dm::kNone ? " boundary" : "");
   }
   validate(m, &chains, stage);
   if (input) {
