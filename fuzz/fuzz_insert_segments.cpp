@@ -29,6 +29,7 @@
 #include "deltamesh/triangulate.hpp"
 #include "deltamesh/validate.hpp"
 #include "fuzz_util.hpp"
+#include "pslg_bytes.hpp"
 
 namespace dm = deltamesh;
 namespace fz = deltamesh::fuzz;
@@ -38,40 +39,6 @@ namespace {
 constexpr std::size_t kMaxPoints = 24;
 constexpr std::size_t kMaxSegments = 12;
 constexpr std::size_t kMaxNewSegments = 6;
-
-// Coordinates: a small integer grid (exact collinearities and cocircular
-// points), the grid scaled and offset, or the grid with each coordinate
-// moved by a few ulps (nearly collinear points, near-misses of vertices).
-struct Coords {
-  int mode = 0;
-  int grid = 8;
-  double scale = 1.0, ox = 0.0, oy = 0.0;
-
-  void init(FuzzedDataProvider& in) {
-    mode = in.ConsumeIntegralInRange<int>(0, 2);
-    grid = in.ConsumeIntegralInRange<int>(1, 16);
-    if (mode != 0) {
-      scale = std::ldexp(1.0, in.ConsumeIntegralInRange<int>(-60, 60));
-      const int shift = in.ConsumeIntegralInRange<int>(0, 40);
-      ox = in.ConsumeBool() ? std::ldexp(scale, shift) : 0.0;
-      oy = in.ConsumeBool() ? -std::ldexp(scale, shift / 2) : 0.0;
-    }
-  }
-  double coord(FuzzedDataProvider& in, double offset) const {
-    double v = in.ConsumeIntegralInRange<int>(0, grid);
-    if (mode == 0) return v;
-    v = offset + scale * v;
-    if (mode == 2) {
-      const int ulps = in.ConsumeIntegralInRange<int>(-3, 3);
-      for (int k = 0; k < std::abs(ulps); ++k) v = std::nextafter(v, ulps > 0 ? INFINITY : -INFINITY);
-    }
-    return v;
-  }
-  dm::Point point(FuzzedDataProvider& in) const {
-    const double x = coord(in, ox);
-    return {x, coord(in, oy)};
-  }
-};
 
 bool internal_error(const dm::InputError& e) { return std::string(e.what()).find("internal error") != std::string::npos; }
 
@@ -122,45 +89,20 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   FuzzedDataProvider in(data, size);
   const std::uint8_t f1 = in.ConsumeIntegral<std::uint8_t>();
   const std::uint8_t f2 = in.ConsumeIntegral<std::uint8_t>();
-  Coords cm;
+  fz::Coords cm;
   cm.init(in);
 
   dm::Pslg g;
   const std::size_t n = in.ConsumeIntegralInRange<std::size_t>(3, kMaxPoints);
   const std::size_t m = in.ConsumeIntegralInRange<std::size_t>(0, kMaxSegments);
   const std::size_t k = in.ConsumeIntegralInRange<std::size_t>(1, kMaxNewSegments);
-  for (std::size_t i = 0; i < n; ++i) g.points.push_back(cm.point(in));
   // The first segments close the polygon 0-1-...-(c-1), so that carving
   // keeps something; the rest join random vertices.
-  const std::size_t ring = (f1 & 1) ? std::min(n, m) : 0;
-  for (std::size_t i = 0; i < m; ++i) {
-    dm::Segment s;
-    if (i < ring) {
-      s.a = static_cast<dm::VertexId>(i);
-      s.b = static_cast<dm::VertexId>((i + 1) % ring);
-    } else {
-      s.a = in.ConsumeIntegralInRange<dm::VertexId>(0, static_cast<dm::VertexId>(n - 1));
-      s.b = in.ConsumeIntegralInRange<dm::VertexId>(0, static_cast<dm::VertexId>(n - 1));
-    }
-    s.marker = in.ConsumeIntegralInRange<int>(0, 3);
-    g.segments.push_back(s);
-  }
-  if (f1 & 2) g.holes.push_back(cm.point(in));
+  fz::read_pslg(in, cm, n, m, (f1 & 1) != 0, (f1 & 2) != 0, g);
 
   static const bool verbose = std::getenv("DELTAMESH_FUZZ_VERBOSE") != nullptr;
-  if (verbose) {  // the PSLG as a .poly (a regression input by copying it)
-    std::fprintf(stderr, "--- input.poly:\n%zu 2 0 0\n", g.points.size());
-    for (std::size_t i = 0; i < g.points.size(); ++i)
-      std::fprintf(stderr, "%zu %.17g %.17g\n", i, g.points[i].x, g.points[i].y);
-    std::fprintf(stderr, "%zu 1\n", g.segments.size());
-    for (std::size_t i = 0; i < g.segments.size(); ++i)
-      std::fprintf(stderr, "%zu %u %u %d\n", i, static_cast<unsigned>(g.segments[i].a),
-                   static_cast<unsigned>(g.segments[i].b), g.segments[i].marker);
-    std::fprintf(stderr, "%zu\n", g.holes.size());
-    for (std::size_t i = 0; i < g.holes.size(); ++i)
-      std::fprintf(stderr, "%zu %.17g %.17g\n", i, g.holes[i].x, g.holes[i].y);
-    std::fprintf(stderr, "0\n--- end\n");
-  }
+  if (verbose)  // the PSLG as a .poly (a regression input by copying it)
+    std::fprintf(stderr, "--- input.poly:\n%s--- end\n", fz::to_poly(g).c_str());
   dm::TriangulateOptions topt;
   topt.domain.keep_convex_hull = (f1 & 4) != 0;
   // Ct: a constrained triangulation that need not be Delaunay, like a mesh

@@ -14,7 +14,6 @@
 #include <fuzzer/FuzzedDataProvider.h>
 
 #include <algorithm>
-#include <charconv>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -34,6 +33,7 @@
 #include "deltamesh/refine.hpp"
 #endif
 #include "fuzz_util.hpp"
+#include "pslg_bytes.hpp"
 
 namespace dm = deltamesh;
 namespace fz = deltamesh::fuzz;
@@ -99,38 +99,6 @@ struct CoordMaker {
     return {x, y};
   }
 };
-
-// The input as a .poly file (shortest round-trip decimals), printed to
-// stderr when DELTAMESH_FUZZ_VERBOSE is set: a crash becomes a regression
-// input (tests/regress/) by copying it.
-std::string to_poly(const dm::Pslg& g) {
-  char buf[64];
-  auto num = [&](double v) {
-    const auto r = std::to_chars(buf, buf + sizeof buf, v);
-    return std::string(buf, r.ptr);
-  };
-  std::string s = std::to_string(g.points.size()) + " 2 " + std::to_string(g.num_point_attributes) + " " +
-                  (g.point_markers.empty() ? "0" : "1") + "\n";
-  for (std::size_t i = 0; i < g.points.size(); ++i) {
-    s += std::to_string(i) + " " + num(g.points[i].x) + " " + num(g.points[i].y);
-    for (std::size_t k = 0; k < g.num_point_attributes; ++k)
-      s += " " + num(g.point_attributes[i * g.num_point_attributes + k]);
-    if (!g.point_markers.empty()) s += " " + std::to_string(g.point_markers[i]);
-    s += "\n";
-  }
-  s += std::to_string(g.segments.size()) + " 1\n";
-  for (std::size_t i = 0; i < g.segments.size(); ++i)
-    s += std::to_string(i) + " " + std::to_string(g.segments[i].a) + " " + std::to_string(g.segments[i].b) + " " +
-         std::to_string(g.segments[i].marker) + "\n";
-  s += std::to_string(g.holes.size()) + "\n";
-  for (std::size_t i = 0; i < g.holes.size(); ++i)
-    s += std::to_string(i) + " " + num(g.holes[i].x) + " " + num(g.holes[i].y) + "\n";
-  s += std::to_string(g.regions.size()) + "\n";
-  for (std::size_t i = 0; i < g.regions.size(); ++i)
-    s += std::to_string(i) + " " + num(g.regions[i].p.x) + " " + num(g.regions[i].p.y) + " " +
-         num(g.regions[i].attribute) + " " + num(g.regions[i].max_area) + "\n";
-  return s;
-}
 
 bool internal_error(const dm::InputError& e) { return std::string(e.what()).find("internal error") != std::string::npos; }
 
@@ -347,7 +315,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
                  topt.use_segments, std::string(dm::to_string(topt.method)).c_str(), topt.strict,
                  topt.domain.fill == dm::FillRule::EvenOdd ? "evenodd" : "holes", topt.domain.keep_convex_hull,
                  topt.domain.ignore_holes, topt.domain.regional_attributes, topt.domain.regional_area_bounds,
-                 to_poly(g).c_str());
+                 fz::to_poly(g).c_str());
   }
 
   dm::Mesh mesh;

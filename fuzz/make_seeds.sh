@@ -17,7 +17,7 @@ for b in "$gen" "$cli"; do
 done
 out=fuzz/corpus
 rm -rf "$out"
-mkdir -p "$out"/{fuzz_node,fuzz_poly,fuzz_ele,fuzz_area,fuzz_geojson,fuzz_mesh,fuzz_insert_segments}
+mkdir -p "$out"/{fuzz_node,fuzz_poly,fuzz_ele,fuzz_area,fuzz_geojson,fuzz_mesh,fuzz_insert_segments,fuzz_adapt}
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 
@@ -128,13 +128,14 @@ done
 # reversed): f1 f2 coord-mode grid [scale shift bool bool] n-3 m k-1,
 # points, PSLG segments (a b marker; only a marker for the ring f1&1
 # makes), a hole point if f1&2, then the new segments (a b marker).
-seed_bytes() {  # seed_bytes NAME BYTE...
-  local name=$1 s="" i
-  shift
+seed_bytes_to() {  # seed_bytes_to TARGET NAME BYTE...
+  local target=$1 name=$2 s="" i
+  shift 2
   local a=("$@")
   for ((i = ${#a[@]} - 1; i >= 0; i--)); do s+=$(printf '\\x%02x' "${a[i]}"); done
-  printf "$s" | seed fuzz_insert_segments "$name"
+  printf "$s" | seed "$target" "$name"
 }
+seed_bytes() { seed_bytes_to fuzz_insert_segments "$@"; }
 # square 0..4 carved by its ring, both diagonals (they cross: a new vertex)
 seed_bytes square_diagonals.bin 1 0 0 3 1 4 1  0 0 4 0 4 4 0 4  1 1 1 1  0 2 2 1 3 3
 # the same under strict: IntersectingSegments, the mesh unchanged
@@ -158,5 +159,40 @@ for i in $(seq 1 12); do
   s=""
   for _ in $(seq 1 "$len"); do s+=$(printf '\\x%02x' $((RANDOM % 256))); done
   printf "$s" | seed fuzz_insert_segments "random_$i.bin"
+done
+# --- fuzz_adapt: the same convention (values reduced modulo their range):
+# f1 f2 f3 coord-mode grid [scale shift bool bool] n-3 ns, points (x y,
+# each followed by an ulp shift 0..6 -> -3..3 in mode 2), segments (a b
+# marker; a marker for ring ones), a hole point if f1&2; then per step the
+# coarsen byte (ratio, max_spoke, renumber, protect), [protect id],
+# max_removals 0..3 [count], [field kind on the second step], the field's
+# parameters (see fuzz_adapt.cpp).
+# 8x8 square ring and its centre, refined to 30 degrees; coarsen to a huge field
+seed_bytes_to fuzz_adapt square_refined_huge.bin 161 5 4 0 8 2 4  0 0 8 0 8 8 0 8 4 4  1 1 1 1  0 0 2
+# the same, adapt to a ramp, input vertices protected
+seed_bytes_to fuzz_adapt square_adapt_ramp.bin 161 53 13 0 8 2 4  0 0 8 0 8 8 0 8 4 4  1 1 1 1  64 0 5 16
+# square with a square hole; coarsen to a wavy field, then adapt (no renumbering)
+# to sizes at the mesh's vertices
+seed_bytes_to fuzz_adapt hole_wavy_then_background.bin 98 10 18 0 12 5 8 \
+  0 0 12 0 12 12 0 12 4 4 8 4 8 8 4 8  0 1 1 1 2 1 2 3 1 3 0 1 4 5 2 5 6 2 6 7 2 7 4 2  6 6 \
+  0 0 2 1 2  32 0 6
+# ulp-perturbed rectangle with collinear boundary vertices; a NaN disk in the field
+seed_bytes_to fuzz_adapt ulp_chain_nan_disk.bin 37 0 20 2 8 60 20 1 0 3 6 \
+  0 3 0 3 4 5 0 3 8 3 0 3 8 3 8 3 4 1 8 6 0 3 8 3  1 1 1 1 1 1  0 0 1 3 4 3 4 3 3
+# point set with two segments (Lawson); adapt to sizes on a background point
+# set, a random protected prefix, at most 3 removals
+seed_bytes_to fuzz_adapt points_background_adapt.bin 44 18 29 0 10 5 2 \
+  0 0 10 0 10 10 0 10 2 3 7 8 5 1 3 9  0 5 2 1 6 3  130 4 2  1 0 0 10 0 0 10 10 10 8 10 6 12 0
+# square with markers changing at the corners, fine mesh; coarsen to a tiny
+# field, then to a huge one with no spoke limit
+seed_bytes_to fuzz_adapt markers_tiny_then_huge.bin 161 11 11 0 15 1 4  0 0 16 0 16 16 0 16  1 2 1 2  0 0 10  24 0 1 3
+# sizes at the vertices with a zero among them: InputError
+seed_bytes_to fuzz_adapt background_bad_size.bin 33 0 24 0 4 2 4  0 0 4 0 4 4 0 4 2 2  0 0 0 0  0 0  5 5 5 5 5 1
+RANDOM=13
+for i in $(seq 1 12); do
+  len=$((24 + RANDOM % 160))
+  s=""
+  for _ in $(seq 1 "$len"); do s+=$(printf '\\x%02x' $((RANDOM % 256))); done
+  printf "$s" | seed fuzz_adapt "random_$i.bin"
 done
 echo "make_seeds: $(find "$out" -type f | wc -l) seeds, $(du -sk "$out" | cut -f1) KiB in $out"

@@ -44,10 +44,10 @@ targets() {
 }
 
 # Per-target input size limit: text formats need room for a few dozen
-# lines; fuzz_mesh reads at most ~1 KB of geometry.
+# lines; fuzz_mesh (and the other PSLG-from-bytes targets) read at most ~1 KB.
 max_len() {
   case "$1" in
-    fuzz_mesh | fuzz_insert_segments) echo 1024 ;;
+    fuzz_mesh | fuzz_insert_segments | fuzz_adapt) echo 1024 ;;
     fuzz_geojson) echo 8192 ;;
     *) echo 4096 ;;
   esac

@@ -300,6 +300,26 @@ TEST(Coarsen, GridVerticesOnTheirLinksDiagonalsGo) {
   EXPECT_LT(as.coarsen.vertices_after, std::size_t{k * k / 8});
 }
 
+// fuzz_adapt: with an empty SizeField coarsen() skipped its counting and
+// reported "0 -> 0 vertices", so adapt() without a field had stats that did
+// not describe the mesh (vertices_after != the vertices refinement started from).
+TEST(Coarsen, NoFieldStillCountsVertices) {
+  const dm::Pslg g = domain();
+  dm::Mesh m = mesh_of(g, quality(30, 1e-2));
+  const std::size_t before = used_vertices(m);
+  ASSERT_GT(before, g.points.size());
+  const dm::CoarsenStats st = dm::coarsen(m, dm::SizeField{});
+  dm::test::expect_valid_with_pslg(m, g);
+  EXPECT_EQ(st.removed, 0u);
+  EXPECT_EQ(st.vertices_before, before);
+  EXPECT_EQ(st.vertices_after, before);
+  EXPECT_EQ(used_vertices(m), before);
+  const dm::AdaptStats as = dm::adapt(m, dm::SizeField{});  // nothing to refine either
+  dm::test::expect_valid_with_pslg(m, g);
+  EXPECT_EQ(as.coarsen.vertices_before, before);
+  EXPECT_EQ(as.coarsen.vertices_after, as.refine.input_vertices);
+}
+
 TEST(Adapt, RefineCoarsenRefineRoundTrip) {
   const dm::Pslg g = domain();
   dm::Mesh m = mesh_of(g, quality(30, 2e-4));

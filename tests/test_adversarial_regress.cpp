@@ -12,6 +12,7 @@
 #include <utility>
 #include <vector>
 
+#include "deltamesh/adapt.hpp"
 #include "deltamesh/errors.hpp"
 #include "deltamesh/refine.hpp"
 #include "deltamesh/triangle_io.hpp"
@@ -331,4 +332,33 @@ TEST(Regress, CdtRingCrossingsStayDelaunayOtherMethods) {
   // The same input: Lawson and Lifting give the CDT.
   check_ring_crossings(dm::CdtMethod::Lawson);
   check_ring_crossings(dm::CdtMethod::Lifting);
+}
+
+TEST(Regress, AdaptSteinerBudgetCoversTheRefinementAfterSmoothing) {
+  // Exposed by fuzz_adapt: after smoothing, adapt() refines again for the
+  // triangles smoothing left outside the bounds, and that refinement got
+  // max_steiner (and the time limit) again: 379 Steiner points under a
+  // budget of 200 here (179 before smoothing, 200 after).
+  const dm::Pslg g = dm::read_poly(regress("adapt_refinement_after_smoothing_exceeds_budget.poly"));
+  dm::TriangulateOptions topt;
+  topt.method = dm::CdtMethod::Lifting;
+  topt.domain.keep_convex_hull = true;
+  dm::Mesh m = dm::triangulate(g, topt);
+  dm::RefineOptions ro;
+  ro.min_angle_deg = 30;
+  ro.max_steiner = 400;
+  dm::refine(m, ro);
+  ASSERT_TRUE(dm::check(m, {.convex_hull = false}).ok());
+  dm::AdaptOptions ao;
+  ao.refine.min_angle_deg = 25;
+  ao.refine.max_steiner = 200;
+  ao.smooth_passes = 3;
+  const dm::AdaptStats st = dm::adapt(m, [](double, double) { return 1e12; }, ao);
+  const dm::CheckReport rep = dm::check(m, {.convex_hull = false});
+  EXPECT_TRUE(rep.ok()) << rep.summary();
+  EXPECT_GT(st.removed, 100u) << st.summary();
+  EXPECT_GT(st.resplit, 0u) << st.summary();  // the refinement after smoothing ran
+  EXPECT_LE(st.inserted, ao.refine.max_steiner) << st.summary();
+  EXPECT_EQ(st.inserted, st.refine.steiner_points);
+  EXPECT_FALSE(st.complete) << st.summary();
 }

@@ -702,8 +702,16 @@ std::string AdaptStats::summary() const {
 CoarsenStats coarsen(Mesh& mesh, const SizeField& h, const CoarsenOptions& options) {
   const auto t0 = Clock::now();
   CoarsenStats st;
-  if (h) Coarsener(mesh, h, options, st).run();
-  mesh.compact();
+  if (h) {
+    Coarsener(mesh, h, options, st).run();
+    mesh.compact();
+  } else {
+    // No field: nothing to remove, but the counts still describe the mesh.
+    mesh.compact();
+    for (VertexId v = 0; v < mesh.num_vertices(); ++v)
+      if (mesh.out_edge(v) != kNone) ++st.vertices_before;
+    st.vertices_after = st.vertices_before;
+  }
   if (options.renumber) st.new_id = mesh.remove_unused_vertices();
   st.seconds = seconds_since(t0);
   return st;
@@ -739,7 +747,15 @@ AdaptStats adapt(Mesh& mesh, const SizeField& h, const AdaptOptions& options) {
     // its star's smallest angle, which may be below the angle bound already:
     // refine the few triangles left outside the bounds.
     if (st.refine.complete) {
-      const RefineStats again = refine(mesh, r);
+      // The budgets are adapt()'s, not each refinement's: this one gets what
+      // the first left (it could add max_steiner points again, and take the
+      // time limit again).
+      RefineOptions r2 = r;
+      if (r.max_steiner != kUnlimited && r.max_steiner != kAutomaticBudget)
+        r2.max_steiner = r.max_steiner - std::min(r.max_steiner, st.refine.steiner_points);
+      if (r.time_limit_seconds > 0)
+        r2.time_limit_seconds = std::max(1e-9, r.time_limit_seconds - st.refine.seconds);  // (<= 0 is none)
+      const RefineStats again = refine(mesh, r2);
       st.resplit = again.steiner_points;
       st.refine.steiner_points += again.steiner_points;
       st.refine.segment_splits += again.segment_splits;
