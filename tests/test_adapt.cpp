@@ -500,3 +500,22 @@ TEST_F(AdaptCli, BadMtrFilesAreInputErrors) {
 }
 
 }  // namespace
+
+// A 135-degree corner beside an edge of length 1.4e-11 lies within 1e-11 of
+// the line through its neighbours (relative to their distance) but is a
+// corner: it stays. (Found by fuzz_adapt.)
+TEST(Coarsen, ACornerBesideATinyEdgeStays) {
+  dm::Pslg g;
+  g.points = {{-1e-11, 1e-11}, {0, 0}, {10, 0}, {10, 10}, {0, 10}};
+  for (dm::VertexId i = 0; i < 5; ++i) g.segments.push_back({i, (i + 1) % 5, 1});
+  dm::Mesh m = dm::triangulate(g);
+  const double before = dm::test::covered_area(m);
+  dm::coarsen(m, [](double, double) { return 1e6; });
+  bool corner = false;
+  for (dm::TriId t = 0; t < m.num_triangle_slots(); ++t)
+    if (m.is_real(t))
+      for (dm::VertexId v : m.triangle(t)) corner = corner || (m.point(v).x == 0 && m.point(v).y == 0);
+  EXPECT_TRUE(corner);
+  EXPECT_EQ(dm::test::covered_area(m), before);
+  dm::test::expect_valid(m, false);
+}

@@ -72,7 +72,8 @@ struct CoarsenStats {
 // and vertices inside a straight segment chain (exactly two constrained
 // edges, same marker, collinear: exactly, or within 1e-11 of the line
 // through the two neighbours relative to their distance, since split points
-// of slanted segments are rounded off the line), whose subsegments merge.
+// of slanted segments are rounded off the line, with a turn of sine below
+// 1e-6 there, so a corner beside a tiny edge stays), whose subsegments merge.
 // Vertices where segments end or bend, or where markers change, stay, and
 // so do vertices with a marker of their own (not 0, not their segments').
 // Candidates go smallest shortest-edge/h first (a heap, re-keyed as stars

@@ -28,6 +28,8 @@ constexpr double kAltitudeScale = 1.1547005383792515;  // 2 / sqrt(3)
 // this close to the line through its neighbours (relative to their
 // distance) counts as on it. Far below the validator's 1e-9.
 constexpr double kCollinearTolerance = 1e-11;
+// ... and the chain turns there by less than this (sine of the angle).
+constexpr double kMaxTurnSine = 1e-6;
 // Vertices of higher degree are never removed (reducing one costs O(degree^2)).
 constexpr std::size_t kMaxDegree = 4096;
 
@@ -134,7 +136,10 @@ class Coarsener {
       const double dot = (pa.x - pv.x) * (pb.x - pv.x) + (pa.y - pv.y) * (pb.y - pv.y);
       const double o = orient2d(pa, pv, pb);
       const double ab2 = (pa.x - pb.x) * (pa.x - pb.x) + (pa.y - pb.y) * (pa.y - pb.y);
-      if ((o == 0 || std::fabs(o) <= kCollinearTolerance * ab2) && dot < 0) {
+      // Also the turn itself must be tiny: beside a very short edge, a
+      // sharp corner is close to the line through its neighbours.
+      const double turn_bound = kMaxTurnSine * dist(pa, pv) * dist(pv, pb);
+      if ((o == 0 || (std::fabs(o) <= kCollinearTolerance * ab2 && std::fabs(o) <= turn_bound)) && dot < 0) {
         s.kind = Kind::Segment;
         s.a = cn[0];
         s.b = cn[1];
