@@ -54,8 +54,6 @@ bool verbose() {
   return v;
 }
 
-bool internal_error(const dm::InputError& e) { return std::string(e.what()).find("internal error") != std::string::npos; }
-
 // Constrained edges as coarsen() sees them: boundary edges count (it
 // constrains them first), a half-edge's marker is read from v's side.
 struct Link {
@@ -472,7 +470,7 @@ dm::SizeField make_field(FuzzedDataProvider& in, const dm::Mesh& m, const Before
         try {
           bg = dm::triangulate(ps);
         } catch (const dm::InputError& e) {
-          if (internal_error(e)) fz::fail(std::string("background triangulate: ") + e.what());
+          if (fz::internal_error(e)) fz::fail(std::string("background triangulate: ") + e.what());
           skip = true;
           return {};
         } catch (...) {
@@ -527,15 +525,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
                  std::string(dm::to_string(topt.method)).c_str(), topt.domain.keep_convex_hull,
                  fz::to_poly(g).c_str());
   dm::Mesh mesh;
-  try {
-    mesh = dm::triangulate(g, topt);
-  } catch (const dm::InputError& e) {
-    if (internal_error(e)) fz::fail(std::string("triangulate: ") + e.what());
-    return 0;
-  } catch (...) {
-    fz::unexpected_exception("triangulate");
-  }
-  if (mesh.num_triangles() == 0) return 0;
+  if (!fz::triangulate_or_stop(g, topt, mesh)) return 0;
   const bool nothing_carved = topt.domain.keep_convex_hull && g.holes.empty();
   validate(mesh, nothing_carved ? &g : nullptr, "triangulate");
 
@@ -592,7 +582,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       try {
         st = dm::coarsen(mesh, h, cs.opt);
       } catch (const dm::InputError& e) {
-        if (internal_error(e)) fz::fail(stage + ": " + e.what());
+        if (fz::internal_error(e)) fz::fail(stage + ": " + e.what());
         return 0;
       } catch (...) {
         fz::unexpected_exception("coarsen");
@@ -613,7 +603,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       try {
         st = dm::adapt(mesh, h, ao);
       } catch (const dm::InputError& e) {
-        if (internal_error(e)) fz::fail(stage + ": " + e.what());
+        if (fz::internal_error(e)) fz::fail(stage + ": " + e.what());
         return 0;
       } catch (...) {
         fz::unexpected_exception("adapt");

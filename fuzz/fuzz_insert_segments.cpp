@@ -40,8 +40,6 @@ constexpr std::size_t kMaxPoints = 24;
 constexpr std::size_t kMaxSegments = 12;
 constexpr std::size_t kMaxNewSegments = 6;
 
-bool internal_error(const dm::InputError& e) { return std::string(e.what()).find("internal error") != std::string::npos; }
-
 // Everything insert_segments may change.
 struct Snapshot {
   std::vector<dm::Point> points;
@@ -110,15 +108,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const bool input_cdt = (f1 & 64) == 0;
   if (!input_cdt) topt.method = dm::CdtMethod::Ct;
   dm::Mesh mesh;
-  try {
-    mesh = dm::triangulate(g, topt);
-  } catch (const dm::InputError& e) {
-    if (internal_error(e)) fz::fail(std::string("triangulate: ") + e.what());
-    return 0;
-  } catch (...) {
-    fz::unexpected_exception("triangulate");
-  }
-  if (mesh.num_triangles() == 0) return 0;
+  if (!fz::triangulate_or_stop(g, topt, mesh)) return 0;
   // -c without a hole: the mesh is its convex hull, and stays so.
   const bool convex = topt.domain.keep_convex_hull && g.holes.empty();
 
@@ -170,7 +160,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     dm::insert_segments(mesh, extra, iopt, &st);
   } catch (const dm::InputError& e) {  // SegmentError, IntersectingSegments among them
     if (verbose) std::fprintf(stderr, "--- insert_segments threw: %s\n", e.what());
-    if (internal_error(e)) fz::fail(std::string("insert_segments: ") + e.what());
+    if (fz::internal_error(e)) fz::fail(std::string("insert_segments: ") + e.what());
     if (!(Snapshot(mesh) == before))
       fz::fail(std::string("insert_segments threw '") + e.what() + "' but changed the mesh (segments" +
                seg_list(extra) + ")");

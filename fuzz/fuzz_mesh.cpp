@@ -100,8 +100,6 @@ struct CoordMaker {
   }
 };
 
-bool internal_error(const dm::InputError& e) { return std::string(e.what()).find("internal error") != std::string::npos; }
-
 std::string describe(const dm::Pslg& g) {
   std::string s = std::to_string(g.points.size()) + " points, " + std::to_string(g.segments.size()) + " segments, " +
                   std::to_string(g.holes.size()) + " holes, " + std::to_string(g.regions.size()) + " regions";
@@ -323,7 +321,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   try {
     mesh = dm::triangulate(g, topt, &stats);
   } catch (const dm::InputError& e) {
-    if (internal_error(e)) fz::fail(std::string("triangulate: ") + e.what() + " on " + describe(g));
+    if (fz::internal_error(e)) fz::fail(std::string("triangulate: ") + e.what() + " on " + describe(g));
     return 0;  // bad input, reported as such
   } catch (...) {
     fz::unexpected_exception("triangulate");

@@ -97,6 +97,11 @@ inline void check_parse_error(const ParseError& e, const std::string& path, std:
   DELTAMESH_FUZZ_CHECK(!e.problem().empty(), "ParseError without a problem");
 }
 
+// An InputError that admits to a bug rather than describing bad input.
+inline bool internal_error(const InputError& e) {
+  return std::string(e.what()).find("internal error") != std::string::npos;
+}
+
 // Any exception that is not one of the library's typed errors is a bug.
 [[noreturn]] inline void unexpected_exception(const char* where) {
   try {

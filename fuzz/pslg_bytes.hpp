@@ -11,7 +11,10 @@
 #include <cstdlib>
 #include <string>
 
+#include "deltamesh/errors.hpp"
 #include "deltamesh/pslg.hpp"
+#include "deltamesh/triangulate.hpp"
+#include "fuzz_util.hpp"
 
 namespace deltamesh::fuzz {
 
@@ -100,6 +103,21 @@ inline std::string to_poly(const Pslg& g) {
     s += std::to_string(i) + " " + num(g.regions[i].p.x) + " " + num(g.regions[i].p.y) + " " +
          num(g.regions[i].attribute) + " " + num(g.regions[i].max_area) + "\n";
   return s;
+}
+
+// triangulate() under the targets' rules: an InputError (bad input) ends
+// the run quietly unless it admits to a bug; any other exception is a bug.
+// False: nothing to go on with (an error, or no triangle left).
+inline bool triangulate_or_stop(const Pslg& g, const TriangulateOptions& options, Mesh& out) {
+  try {
+    out = triangulate(g, options);
+  } catch (const InputError& e) {
+    if (internal_error(e)) fail(std::string("triangulate: ") + e.what());
+    return false;
+  } catch (...) {
+    unexpected_exception("triangulate");
+  }
+  return out.num_triangles() > 0;
 }
 
 }  // namespace deltamesh::fuzz
