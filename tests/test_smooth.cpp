@@ -311,3 +311,40 @@ TEST_F(SmoothCli, BadCountsAndDAreUsageErrors) {
 }
 
 }  // namespace
+
+// The refinement after smoothing has only what the first refinement left of
+// its Steiner budget: with none left it inserts nothing, and the counts stay
+// within the budget.
+TEST(Smooth, RefinementAfterSmoothingStaysWithinTheBudget) {
+  // examples/plate.poly at -pq30a0.002 --smooth: smoothing leaves one
+  // triangle outside the bounds (measured), which the refinement after it splits.
+  const dm::Pslg g = dm::read_poly(DELTAMESH_SOURCE_DIR "/examples/plate.poly");
+  dm::Mesh m = dm::triangulate(g);
+  dm::RefineOptions r;
+  r.min_angle_deg = 30;
+  r.max_area = 0.002;
+  dm::RefineStats st = dm::refine(m, r);
+  ASSERT_TRUE(st.complete) << st.summary();
+  ASSERT_GT(st.steiner_points, 100u);
+  dm::SmoothOptions so;
+  so.passes = 3;
+  so.max_area = r.max_area;
+  so.protect_first = g.points.size();
+  {
+    // Control: with budget to spare, the refinement after smoothing does
+    // insert points on this mesh (so the budget below is what stops it).
+    dm::Mesh copy = m;
+    dm::RefineStats control = st;
+    std::size_t added = 0;
+    dm::smooth_refined(copy, so, r, control, &added);
+    EXPECT_GT(added, 0u);
+  }
+  r.max_steiner = st.steiner_points;  // all of it used already
+  std::size_t resplit = 99;
+  const std::size_t before = m.num_vertices();
+  dm::smooth_refined(m, so, r, st, &resplit);
+  EXPECT_EQ(resplit, 0u);
+  EXPECT_EQ(m.num_vertices(), before);
+  EXPECT_LE(st.steiner_points, r.max_steiner);
+  dm::test::expect_valid_with_pslg(m, g);
+}

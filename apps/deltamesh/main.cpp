@@ -605,25 +605,19 @@ class Run {
     so.passes = opt_.smooth;
     so.protect_first = protect;
     if (refined_) so.max_area = refine_options().max_area;
-    smooth_stats_ = dm::smooth(mesh, so);
-    smoothed_ = true;
-    phase("smooth", t);
-    if (refined_ && refine_stats_.complete) {
-      t = Clock::now();
+    if (refined_) {
+      // Then what smoothing left outside the refinement's bounds is refined,
+      // within what is left of its budgets.
       dm::RefineOptions ropt = refine_options();
       ropt.progress = progress_callback();
-      const dm::RefineStats again = dm::refine(mesh, ropt);
+      smooth_stats_ = dm::smooth_refined(mesh, so, ropt, refine_stats_, &resplit_);
       progress_.clear();
-      resplit_ = again.steiner_points;
-      refine_stats_.steiner_points += again.steiner_points;
-      refine_stats_.complete = again.complete;
-      refine_stats_.budget_exhausted = again.budget_exhausted;
-      refine_stats_.time_exhausted = again.time_exhausted;
-      refine_stats_.too_large = again.too_large;
-      refine_stats_.too_large_precision = again.too_large_precision;
       if (resplit_) dm::finish_vertex_markers(mesh);
-      phase("refine after smoothing", t);
+    } else {
+      smooth_stats_ = dm::smooth(mesh, so);
     }
+    smoothed_ = true;
+    phase("smooth", t);
   }
 
   // Refinement is asked for by -q, -a, -S or -D.

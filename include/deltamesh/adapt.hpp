@@ -139,6 +139,16 @@ struct SmoothStats {
 // re-interpolated.
 SmoothStats smooth(Mesh& mesh, const SmoothOptions& options = {});
 
+// Smooths a mesh that refine(mesh, refine_options) left with `refined`, and
+// when that refinement was complete, refines again the few triangles
+// smoothing left outside its bounds (a flip may lengthen an edge; a move
+// keeps only its star's smallest angle, which may be below the bound at an
+// input angle). The second refinement gets what the first left of the
+// Steiner budget and time limit, and its counts are added to `refined`;
+// `resplit` (when given) receives the points it inserted.
+SmoothStats smooth_refined(Mesh& mesh, const SmoothOptions& options, const RefineOptions& refine_options,
+                           RefineStats& refined, std::size_t* resplit = nullptr);
+
 struct AdaptOptions {
   CoarsenOptions coarsen;
   // Refinement after coarsening: its max_edge_at is set to h (a triangle's

@@ -722,6 +722,40 @@ CoarsenStats coarsen(Mesh& mesh, const SizeField& h, const CoarsenOptions& optio
   return st;
 }
 
+SmoothStats smooth_refined(Mesh& mesh, const SmoothOptions& options, const RefineOptions& refine_options,
+                           RefineStats& refined, std::size_t* resplit) {
+  const SmoothStats s = smooth(mesh, options);
+  if (resplit) *resplit = 0;
+  if (!refined.complete) return s;  // a budget stopped it: nothing is owed
+  // The budgets are the whole run's (the second refinement could otherwise
+  // add max_steiner points again, and take the time limit again).
+  RefineOptions r = refine_options;
+  if (r.max_steiner != kUnlimited && r.max_steiner != kAutomaticBudget)
+    r.max_steiner -= std::min(r.max_steiner, refined.steiner_points);
+  if (r.time_limit_seconds > 0)
+    r.time_limit_seconds = std::max(1e-9, r.time_limit_seconds - refined.seconds);  // (<= 0 is none)
+  const RefineStats again = refine(mesh, r);
+  if (resplit) *resplit = again.steiner_points;
+  refined.steiner_points += again.steiner_points;
+  refined.segment_splits += again.segment_splits;
+  refined.interior_points += again.interior_points;
+  refined.offcenters += again.offcenters;
+  refined.complete = again.complete;
+  refined.budget_exhausted = again.budget_exhausted;
+  refined.time_exhausted = again.time_exhausted;
+  // What is left below the bound is the final mesh's, as the second
+  // refinement classified it.
+  refined.below_bound = again.below_bound;
+  refined.below_small_input_angle = again.below_small_input_angle;
+  refined.below_segment_protected = again.below_segment_protected;
+  refined.below_budget = again.below_budget;
+  refined.below_precision = again.below_precision;
+  refined.too_large = again.too_large;
+  refined.too_large_precision = again.too_large_precision;
+  refined.seconds += again.seconds;
+  return s;
+}
+
 AdaptStats adapt(Mesh& mesh, const SizeField& h, const AdaptOptions& options) {
   const auto t0 = Clock::now();
   AdaptStats st;
@@ -747,33 +781,7 @@ AdaptStats adapt(Mesh& mesh, const SizeField& h, const AdaptOptions& options) {
     so.h = h;
     so.max_area = options.refine.max_area;
     so.protect_first = options.coarsen.protect_first;
-    st.smooth = smooth(mesh, so);
-    // A flip may lengthen an edge (the new diagonal), and a move only keeps
-    // its star's smallest angle, which may be below the angle bound already:
-    // refine the few triangles left outside the bounds.
-    if (st.refine.complete) {
-      // The budgets are adapt()'s, not each refinement's: this one gets what
-      // the first left (it could add max_steiner points again, and take the
-      // time limit again).
-      RefineOptions r2 = r;
-      if (r.max_steiner != kUnlimited && r.max_steiner != kAutomaticBudget)
-        r2.max_steiner = r.max_steiner - std::min(r.max_steiner, st.refine.steiner_points);
-      if (r.time_limit_seconds > 0)
-        r2.time_limit_seconds = std::max(1e-9, r.time_limit_seconds - st.refine.seconds);  // (<= 0 is none)
-      const RefineStats again = refine(mesh, r2);
-      st.resplit = again.steiner_points;
-      st.refine.steiner_points += again.steiner_points;
-      st.refine.segment_splits += again.segment_splits;
-      st.refine.interior_points += again.interior_points;
-      st.refine.offcenters += again.offcenters;
-      st.refine.complete = again.complete;
-      st.refine.budget_exhausted = again.budget_exhausted;
-      st.refine.time_exhausted = again.time_exhausted;
-      st.refine.below_bound = again.below_bound;
-      st.refine.too_large = again.too_large;
-      st.refine.too_large_precision = again.too_large_precision;
-      st.refine.seconds += again.seconds;
-    }
+    st.smooth = smooth_refined(mesh, so, r, st.refine, &st.resplit);
   }
   st.removed = st.coarsen.removed;
   st.inserted = st.refine.steiner_points;
