@@ -25,6 +25,24 @@ seed() {  # seed TARGET NAME  (content on stdin)
   cat > "$out/$1/$2"
 }
 
+# random_seeds TARGET BASH_SEED COUNT MIN_LEN LEN_SPAN: COUNT pseudo-random
+# byte strings random_1.bin ... of MIN_LEN + (0..LEN_SPAN-1) bytes.
+random_seeds() {
+  local target=$1 count=$3 min=$4 span=$5 i len s b
+  RANDOM=$2
+  for i in $(seq 1 "$count"); do
+    len=$((min + RANDOM % span))
+    s=""
+    # RANDOM read here, not inside $(...): bash reseeds it in subshells,
+    # which made the strings differ from run to run.
+    for _ in $(seq 1 "$len"); do
+      b=$((RANDOM % 256))
+      s+=$(printf '\\x%02x' "$b")
+    done
+    printf "$s" | seed "$target" "random_$i.bin"
+  done
+}
+
 # --- .node: generated point sets (small: the fuzzer mutates, it needs no bulk)
 for spec in "uniform 12" "gaussian 12" "grid 16" "collinear 8" "cocircular 10" "duplicates 12"; do
   set -- $spec
@@ -116,13 +134,7 @@ EOF
 # (options, then counts, then coordinates). A few fixed patterns and
 # seeded pseudo-random strings.
 printf '\x01\x00\x02\x03\x04\x05\x06\x07\x08\x09\x0a\x0b\x0c\x0d\x0e\x0f\x10\x11\x12\x13\x14\x15\x16\x17\x18\x19\x1a\x1b\x1c\x1d\x1e\x1f\x00\x05\x03\x08\x21\x01' | seed fuzz_mesh counting.bin
-RANDOM=7
-for i in $(seq 1 24); do
-  len=$((16 + RANDOM % 200))
-  s=""
-  for _ in $(seq 1 "$len"); do s+=$(printf '\\x%02x' $((RANDOM % 256))); done
-  printf "$s" | seed fuzz_mesh "random_$i.bin"
-done
+random_seeds fuzz_mesh 7 24 16 200
 # --- fuzz_insert_segments: byte values in the order the target consumes
 # them (FuzzedDataProvider reads from the end, so they are written
 # reversed): f1 f2 coord-mode grid [scale shift bool bool] n-3 m k-1,
@@ -153,13 +165,7 @@ seed_bytes ulp_near_diagonal.bin 28 3 2 7 60 0 0 0 3 0 2 \
 seed_bytes collinear_chain.bin 4 9 0 3 3 0 2  0 0 1 1 2 2 3 3 3 0 0 3  0 3 1 0 0 0 4 5 2
 # an endpoint out of range: SegmentError
 seed_bytes out_of_range.bin 4 0 0 3 0 0 1  0 0 4 0 0 4  0 2 0 3 1 1
-RANDOM=11
-for i in $(seq 1 12); do
-  len=$((24 + RANDOM % 120))
-  s=""
-  for _ in $(seq 1 "$len"); do s+=$(printf '\\x%02x' $((RANDOM % 256))); done
-  printf "$s" | seed fuzz_insert_segments "random_$i.bin"
-done
+random_seeds fuzz_insert_segments 11 12 24 120
 # --- fuzz_adapt: the same convention (values reduced modulo their range):
 # f1 f2 f3 coord-mode grid [scale shift bool bool] n-3 ns, points (x y,
 # each followed by an ulp shift 0..6 -> -3..3 in mode 2), segments (a b
@@ -188,11 +194,5 @@ seed_bytes_to fuzz_adapt points_background_adapt.bin 44 18 29 0 10 5 2 \
 seed_bytes_to fuzz_adapt markers_tiny_then_huge.bin 161 11 11 0 15 1 4  0 0 16 0 16 16 0 16  1 2 1 2  0 0 10  24 0 1 3
 # sizes at the vertices with a zero among them: InputError
 seed_bytes_to fuzz_adapt background_bad_size.bin 33 0 24 0 4 2 4  0 0 4 0 4 4 0 4 2 2  0 0 0 0  0 0  5 5 5 5 5 1
-RANDOM=13
-for i in $(seq 1 12); do
-  len=$((24 + RANDOM % 160))
-  s=""
-  for _ in $(seq 1 "$len"); do s+=$(printf '\\x%02x' $((RANDOM % 256))); done
-  printf "$s" | seed fuzz_adapt "random_$i.bin"
-done
+random_seeds fuzz_adapt 13 12 24 160
 echo "make_seeds: $(find "$out" -type f | wc -l) seeds, $(du -sk "$out" | cut -f1) KiB in $out"
