@@ -47,6 +47,19 @@ class IoError : public Error {
   using Error::Error;
 };
 
+// A broken invariant: a bug in deltamesh, never the input's fault. The CLI
+// exits 70 on it, Python raises deltamesh.InternalError, fuzz targets treat it
+// as a crash. `where` names the function that found it.
+class InternalError : public Error {
+ public:
+  InternalError(const std::string& where, const std::string& what)
+      : Error(where + ": " + what), where_(where) {}
+  const std::string& where() const { return where_; }
+
+ private:
+  std::string where_;
+};
+
 }  // namespace deltamesh
 
 namespace deltamesh {
