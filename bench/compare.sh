@@ -66,10 +66,12 @@ log() { echo "$*" >&2; }
 # ---- builds -------------------------------------------------------------------
 # build SRC_DIR BUILD_DIR: Release, the CLI and the generator only.
 build() {
+  mkdir -p "$2"
+  local log=$2/compare-build.log
   cmake -S "$1" -B "$2" -DCMAKE_BUILD_TYPE=Release -DDELTAMESH_TESTS=OFF -DDELTAMESH_PYTHON=OFF \
-    -DDELTAMESH_BENCH=OFF >"$2.log" 2>&1 || { cat "$2.log" >&2; die "configuring $1 failed"; }
-  cmake --build "$2" -j"$jobs" --target deltamesh_cli deltamesh-gen >>"$2.log" 2>&1 ||
-    { tail -30 "$2.log" >&2; die "building $1 failed (log: $2.log)"; }
+    -DDELTAMESH_BENCH=OFF >"$log" 2>&1 || { cat "$log" >&2; die "configuring $1 failed"; }
+  cmake --build "$2" -j"$jobs" --target deltamesh_cli deltamesh-gen >>"$log" 2>&1 ||
+    { tail -30 "$log" >&2; die "building $1 failed (log: $log)"; }
 }
 
 if [ -z "$base_bin" ]; then
