@@ -4,8 +4,8 @@
 // specified bit for bit, so the same seed would give different inputs on
 // another standard library. std::mt19937_64 is fully specified, so uniform,
 // grid, collinear and duplicates are bit-identical everywhere; gaussian,
-// cocircular and star also call libm (log, cos, sin), whose last bit may
-// differ between C libraries.
+// cocircular, star and smooth also call libm (log, cos, sin), whose last bit
+// may differ between C libraries.
 #pragma once
 #include <cmath>
 #include <cstddef>
@@ -62,7 +62,7 @@ class Rng {
   bool has_spare_ = false;
 };
 
-enum class Kind { Uniform, Gaussian, Grid, Collinear, Cocircular, Duplicates, Star, SquareHole };
+enum class Kind { Uniform, Gaussian, Grid, Collinear, Cocircular, Duplicates, Star, SquareHole, Smooth };
 
 struct KindInfo {
   Kind kind;
@@ -79,6 +79,7 @@ inline constexpr KindInfo kKinds[] = {
     {Kind::Duplicates, "duplicates", "N points, about half of them copies of the others"},
     {Kind::Star, "star", "star-shaped polygon, N vertices, radii uniform in [0.5,1] (.poly)"},
     {Kind::SquareHole, "square-hole", "unit square with the hole [0.4,0.6]^2, ~N boundary vertices (.poly)"},
+    {Kind::Smooth, "smooth", "polygon r(t) = 0.7 + 0.2 sin 7t + 0.05 sin 53t, N vertices (.poly, from 1)"},
 };
 
 inline std::optional<Kind> parse_kind(std::string_view name) {
@@ -88,7 +89,9 @@ inline std::optional<Kind> parse_kind(std::string_view name) {
 }
 
 // Kinds whose output is a PSLG with segments (always written as .poly).
-inline bool is_polygon_kind(Kind kind) { return kind == Kind::Star || kind == Kind::SquareHole; }
+inline bool is_polygon_kind(Kind kind) {
+  return kind == Kind::Star || kind == Kind::SquareHole || kind == Kind::Smooth;
+}
 
 // Fisher-Yates with our own integer draws.
 template <class T>
@@ -187,6 +190,24 @@ inline Pslg star_polygon(std::size_t n, std::uint64_t seed) {
   return g;
 }
 
+// The smooth polygon of the benchmarks: vertex i at t = 2 pi i / n on
+// r(t) = 0.7 + 0.2 sin 7t + 0.05 sin 53t (r > 0 and t increasing, so the
+// ring is simple), segment i joining vertices i and i+1, the last one back
+// to vertex 0. Numbered from 1 in files (first_index). Needs n >= 3.
+inline Pslg smooth_polygon(std::size_t n) {
+  Pslg g;
+  g.first_index = 1;
+  g.points.resize(n);
+  g.segments.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const double t = 2.0 * std::numbers::pi * static_cast<double>(i) / static_cast<double>(n);
+    const double r = 0.7 + 0.2 * std::sin(7.0 * t) + 0.05 * std::sin(53.0 * t);
+    g.points[i] = {r * std::cos(t), r * std::sin(t)};
+    g.segments[i] = {static_cast<VertexId>(i), static_cast<VertexId>((i + 1) % n), 0};
+  }
+  return g;
+}
+
 // The unit square with the hole [0.4,0.6]^2: each of the 8 sides is split
 // into m = max(1, n/8) segments, and a hole point marks the hole.
 inline Pslg square_with_hole(std::size_t n) {
@@ -224,6 +245,7 @@ inline Pslg generate(Kind kind, std::size_t n, std::uint64_t seed, double scale 
     case Kind::Duplicates: g.points = duplicate_points(n, seed); break;
     case Kind::Star: g = star_polygon(n, seed); break;
     case Kind::SquareHole: g = square_with_hole(n); break;
+    case Kind::Smooth: g = smooth_polygon(n); break;
   }
   if (scale != 1.0) {
     for (Point& p : g.points) p = {p.x * scale, p.y * scale};

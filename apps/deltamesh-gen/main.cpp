@@ -20,7 +20,8 @@ void print_help(std::FILE* out) {
   std::fprintf(out,
                "usage: deltamesh-gen KIND N [--seed S] [--scale F] [--poly] [-o FILE]\n"
                "\n"
-               "Writes a seeded input as a Triangle .node file (0-based) to stdout or FILE.\n"
+               "Writes a seeded input as a Triangle .node file (0-based; smooth from 1) to\n"
+               "stdout or FILE.\n"
                "The same KIND, N, seed and scale always give the same bytes.\n"
                "\n"
                "KIND:\n");
@@ -33,10 +34,10 @@ void print_help(std::FILE* out) {
                "  --seed S    seed of the generator (default 1)\n"
                "  --scale F   multiply every coordinate by F (default 1)\n"
                "  --poly      write a .poly file (points, then 0 segments and 0 holes);\n"
-               "              always on for star and square-hole\n"
+               "              always on for star, square-hole and smooth\n"
                "  -o FILE     write to FILE instead of stdout\n"
                "  -h, --help  this text\n"
-               "N may be written as 1000000 or 1e6.\n");
+               "N may be written as 1000000 or 1e6; for smooth it defaults to 100000.\n");
 }
 
 [[noreturn]] void fail(const std::string& msg) {
@@ -75,7 +76,7 @@ class Writer {
     char tmp[32];
     buf_.append(tmp, std::to_chars(tmp, tmp + sizeof tmp, v).ptr);  // shortest round trip
   }
-  void point_line(std::uint64_t i, const Point& p) {
+  void point_line(std::uint64_t i, const Point& p) {  // i: as numbered in the file
     integer(i);
     text(" ");
     real(p.x);
@@ -90,25 +91,27 @@ class Writer {
   std::string buf_;
 };
 
+// Vertices, segments and holes numbered from g.first_index.
 void write(const Pslg& g, bool poly, Writer& w) {
+  const auto base = static_cast<std::uint64_t>(g.first_index);
   w.reserve(g.points.size() * 48 + g.segments.size() * 24 + 64);
   w.integer(g.points.size());
   w.text(" 2 0 0\n");
-  for (std::size_t i = 0; i < g.points.size(); ++i) w.point_line(i, g.points[i]);
+  for (std::size_t i = 0; i < g.points.size(); ++i) w.point_line(base + i, g.points[i]);
   if (!poly) return;
   w.integer(g.segments.size());
   w.text(" 0\n");
   for (std::size_t i = 0; i < g.segments.size(); ++i) {
-    w.integer(i);
+    w.integer(base + i);
     w.text(" ");
-    w.integer(g.segments[i].a);
+    w.integer(base + g.segments[i].a);
     w.text(" ");
-    w.integer(g.segments[i].b);
+    w.integer(base + g.segments[i].b);
     w.text("\n");
   }
   w.integer(g.holes.size());
   w.text("\n");
-  for (std::size_t i = 0; i < g.holes.size(); ++i) w.point_line(i, g.holes[i]);
+  for (std::size_t i = 0; i < g.holes.size(); ++i) w.point_line(base + i, g.holes[i]);
 }
 
 }  // namespace
@@ -148,15 +151,21 @@ int main(int argc, char** argv) {
       positional[npos++] = a;
     }
   }
-  if (npos < 2) {
+  if (npos < 1) {
     print_help(stderr);
     return 2;
   }
   const auto kind = gen::parse_kind(positional[0]);
   if (!kind) fail("unknown kind '" + std::string(positional[0]) + "'");
-  std::size_t n = 0;
-  if (!parse_count(positional[1], n)) fail("bad count '" + std::string(positional[1]) + "'");
-  if (*kind == gen::Kind::Star && n < 3) fail("star needs N >= 3");
+  // N is required except for smooth, whose benchmark size is the default.
+  if (npos < 2 && *kind != gen::Kind::Smooth) {
+    print_help(stderr);
+    return 2;
+  }
+  std::size_t n = 100000;
+  if (npos == 2 && !parse_count(positional[1], n)) fail("bad count '" + std::string(positional[1]) + "'");
+  if ((*kind == gen::Kind::Star || *kind == gen::Kind::Smooth) && n < 3)
+    fail(std::string(positional[0]) + " needs N >= 3");
   if (gen::is_polygon_kind(*kind)) poly = true;
 
   const Pslg g = gen::generate(*kind, n, seed, scale);

@@ -11,6 +11,8 @@ namespace deltamesh::detail {
 // Index of (x, y) on a Hilbert curve of `levels` levels (<= 16) over
 // [0, 2^levels)^2.
 std::uint32_t hilbert_index(std::uint32_t x, std::uint32_t y, int levels = 16);
+// hilbert_index(x, y, 11) for x, y < 2^11, four levels per table lookup.
+std::uint32_t hilbert_index_11(std::uint32_t x, std::uint32_t y);
 
 // Insertion order for `points`: a biased randomized insertion order (rounds of
 // growing size, chosen by a fixed hash of the index, so deterministic) with

@@ -4,10 +4,14 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <sys/mman.h>
+
+#include <bit>
 #include <cerrno>
 #include <charconv>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <system_error>
 
 namespace deltamesh::io {
@@ -34,12 +38,29 @@ class Fd {
 
 }  // namespace
 
-std::string read_whole_file(const std::string& path) {
-  Fd fd(::open(path.c_str(), O_RDONLY | O_CLOEXEC));
-  if (fd.get() < 0) throw IoError("cannot open '" + path + "': " + errno_text(errno));
-  struct stat st {};
-  if (::fstat(fd.get(), &st) != 0) throw IoError("cannot read '" + path + "': " + errno_text(errno));
-  if (S_ISDIR(st.st_mode)) throw IoError("cannot read '" + path + "': " + errno_text(EISDIR));
+namespace {
+
+void throw_read_error(const std::string& path, int err) {
+  throw IoError("cannot read '" + path + "': " + errno_text(err));
+}
+
+// Opens `path` for reading and checks it is not a directory.
+int open_for_reading(const std::string& path, struct stat& st) {
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) throw IoError("cannot open '" + path + "': " + errno_text(errno));
+  if (::fstat(fd, &st) != 0) {
+    const int err = errno;
+    ::close(fd);
+    throw_read_error(path, err);
+  }
+  if (S_ISDIR(st.st_mode)) {
+    ::close(fd);
+    throw_read_error(path, EISDIR);
+  }
+  return fd;
+}
+
+std::string read_all(int fd, const struct stat& st, const std::string& path) {
   std::string text;
   // Regular files: one read of the known size. Pipes and growing files: the
   // buffer grows until end of file.
@@ -48,10 +69,10 @@ std::string read_whole_file(const std::string& path) {
   std::size_t used = 0;
   for (;;) {
     if (used == text.size()) text.resize(text.size() * 2);
-    const ssize_t got = ::read(fd.get(), text.data() + used, text.size() - used);
+    const ssize_t got = ::read(fd, text.data() + used, text.size() - used);
     if (got < 0) {
       if (errno == EINTR) continue;
-      throw IoError("cannot read '" + path + "': " + errno_text(errno));
+      throw_read_error(path, errno);
     }
     if (got == 0) break;
     used += static_cast<std::size_t>(got);
@@ -60,9 +81,134 @@ std::string read_whole_file(const std::string& path) {
   return text;
 }
 
+}  // namespace
+
+std::string read_whole_file(const std::string& path) {
+  struct stat st {};
+  Fd fd(open_for_reading(path, st));
+  return read_all(fd.get(), st, path);
+}
+
+namespace {
+
+constexpr bool is_digit(char c) { return static_cast<unsigned char>(c - '0') < 10; }
+
+// Eight ASCII digits at p (little-endian load): whether they are all digits,
+// and their value. Each step merges neighbouring lanes: bytes into 2-digit
+// numbers, those into 4-digit, those into the 8-digit value.
+std::uint64_t load8(const char* p) {
+  std::uint64_t v;
+  std::memcpy(&v, p, 8);
+  return v;
+}
+bool eight_digits(std::uint64_t v) {
+  const std::uint64_t below = v - 0x3030303030303030u;  // high bit set where a byte < '0'
+  const std::uint64_t above = v + 0x4646464646464646u;  // high bit set where a byte > '9'
+  return ((below | above) & 0x8080808080808080u) == 0;
+}
+std::uint64_t value8(std::uint64_t v) {
+  v -= 0x3030303030303030u;
+  v = (v * 10 + (v >> 8)) & 0x00FF00FF00FF00FFu;
+  v = (v * 100 + (v >> 16)) & 0x0000FFFF0000FFFFu;
+  return (v * 10000 + (v >> 32)) & 0xFFFFFFFFu;
+}
+
+constexpr bool kSwar = std::endian::native == std::endian::little;
+constexpr int kMaxDigits = 19;  // 10^19 - 1 < 2^64
+
+// Appends the digits at p to m (at most kMaxDigits significant digits in
+// all; `significant` counts them). Returns the end of the digits, or nullptr
+// when there are too many.
+[[gnu::always_inline]] inline const char* accumulate_digits(const char* p, const char* last, std::uint64_t& m,
+                                                           int& significant) {
+  if (m == 0)  // leading zeros are not significant
+    while (p < last && *p == '0') ++p;
+  if constexpr (kSwar) {
+    while (last - p >= 8 && significant + 8 <= kMaxDigits) {
+      const std::uint64_t v = load8(p);
+      if (!eight_digits(v)) break;
+      m = m * 100000000u + value8(v);
+      significant += 8;
+      p += 8;
+    }
+  }
+  while (p < last && is_digit(*p)) {
+    if (++significant > kMaxDigits) return nullptr;
+    m = m * 10 + static_cast<unsigned>(*p - '0');
+    ++p;
+  }
+  return p;
+}
+
+constexpr double kPow10[] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,  1e8,  1e9,  1e10, 1e11,
+                             1e12, 1e13, 1e14, 1e15, 1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
+// 10^k = 2^k 5^k is exact in 64 bits of significand up to k = 27 (5^27 < 2^63).
+constexpr bool kX87 = std::numeric_limits<long double>::digits == 64 && kSwar;
+constexpr long double kPow10L[] = {1e0L,  1e1L,  1e2L,  1e3L,  1e4L,  1e5L,  1e6L,  1e7L,  1e8L,  1e9L,
+                                   1e10L, 1e11L, 1e12L, 1e13L, 1e14L, 1e15L, 1e16L, 1e17L, 1e18L, 1e19L,
+                                   1e20L, 1e21L, 1e22L, 1e23L, 1e24L, 1e25L, 1e26L, 1e27L};
+
+}  // namespace
+
+const char* parse_decimal_prefix(const char* first, const char* last, double& value) {
+  const char* p = first;
+  const bool negative = p < last && *p == '-';
+  p += negative;
+  std::uint64_t m = 0;
+  int significant = 0;
+  const char* const int_start = p;
+  p = accumulate_digits(p, last, m, significant);
+  if (p == nullptr) return nullptr;
+  bool any_digit = p != int_start;
+  int exponent = 0;
+  if (p < last && *p == '.') {
+    const char* const frac_start = ++p;
+    p = accumulate_digits(p, last, m, significant);
+    if (p == nullptr) return nullptr;
+    exponent = -static_cast<int>(p - frac_start);
+    any_digit = any_digit || p != frac_start;
+  }
+  if (!any_digit) return nullptr;
+  if (p < last && (*p == 'e' || *p == 'E')) {
+    const char* q = p + 1;
+    const bool exp_negative = q < last && *q == '-';
+    if (q < last && (*q == '-' || *q == '+')) ++q;
+    if (q == last || !is_digit(*q)) return nullptr;  // "1e": from_chars stops before the 'e'
+    int e = 0;
+    for (; q < last && is_digit(*q); ++q)
+      if (e < 100000) e = e * 10 + (*q - '0');
+    exponent += exp_negative ? -e : e;
+    p = q;
+  }
+  double v;
+  if (m == 0) {
+    v = 0.0;
+  } else if (m <= (std::uint64_t{1} << 53) && exponent >= -22 && exponent <= 22) {
+    // Clinger: both operands exact, so the one rounding is the correct one.
+    v = exponent < 0 ? static_cast<double>(m) / kPow10[-exponent] : static_cast<double>(m) * kPow10[exponent];
+  } else if (kX87 && exponent >= -27 && exponent <= 27) {
+    // Exact operands again; the result is rounded to 64 bits, then to 53.
+    // Rounding twice can differ from rounding once only when the first
+    // result lies exactly half-way between two doubles (its low 11 bits are
+    // 10000000000): those go to from_chars. The result is far from the
+    // subnormal range, where the double grid would change.
+    const auto y = static_cast<long double>(m);
+    const long double r = exponent < 0 ? y / kPow10L[-exponent] : y * kPow10L[exponent];
+    std::uint64_t significand;
+    std::memcpy(&significand, &r, sizeof significand);
+    if ((significand & 0x7FF) == 0x400) return nullptr;
+    v = static_cast<double>(r);
+  } else {
+    return nullptr;
+  }
+  value = negative ? -v : v;
+  return p;
+}
+
 NumberStatus parse_double(std::string_view token, double& value) {
   const char* first = token.data();
   const char* last = first + token.size();
+  if (parse_decimal_prefix(first, last, value) == last) return NumberStatus::Ok;
   const bool plus = first != last && *first == '+';
   if (plus) ++first;
   if (first == last || (plus && (*first == '+' || *first == '-'))) return NumberStatus::NotANumber;
@@ -99,13 +245,43 @@ std::string plural(long long n, std::string_view one, std::string_view many) {
 }
 
 TextReader::TextReader(std::string file_name, std::string text)
-    : file_(std::move(file_name)), text_(std::move(text)) {
+    : file_(std::move(file_name)), owned_(std::move(text)), text_(owned_) {
   tokens_.reserve(16);
   // A UTF-8 byte order mark (some Windows editors write one) is not data.
   if (text_.compare(0, 3, "\xEF\xBB\xBF") == 0) pos_ = 3;
 }
 
-TextReader TextReader::open(const std::string& path) { return TextReader(path, read_whole_file(path)); }
+TextReader::TextReader(std::string file_name, Mapping mapping)
+    : file_(std::move(file_name)),
+      mapping_(mapping),
+      text_(static_cast<const char*>(mapping.address), mapping.length) {
+  tokens_.reserve(16);
+  if (text_.compare(0, 3, "\xEF\xBB\xBF") == 0) pos_ = 3;
+}
+
+TextReader::~TextReader() {
+  if (mapping_.address != nullptr) ::munmap(mapping_.address, mapping_.length);
+}
+
+TextReader TextReader::open(const std::string& path) {
+  struct stat st {};
+  Fd fd(open_for_reading(path, st));
+  // Mapping a file in the page cache costs neither a copy nor a zero-filled
+  // buffer (together about a third of reading a large .node file). A file
+  // truncated by another process while we parse it would fault; files being
+  // rewritten under a mesher are not a use we support. Empty regular files
+  // (and /proc files, which report size 0) are read.
+  if (S_ISREG(st.st_mode) && st.st_size > 0) {
+    int flags = MAP_PRIVATE;
+#ifdef MAP_POPULATE
+    flags |= MAP_POPULATE;  // map every page now rather than fault on each
+#endif
+    const auto length = static_cast<std::size_t>(st.st_size);
+    void* address = ::mmap(nullptr, length, PROT_READ, flags, fd.get(), 0);
+    if (address != MAP_FAILED) return TextReader(path, Mapping{address, length});
+  }
+  return TextReader(path, read_all(fd.get(), st, path));
+}
 
 std::size_t TextReader::line_end(std::size_t from) const {
   const void* nl = std::memchr(text_.data() + from, '\n', text_.size() - from);
@@ -174,6 +350,21 @@ bool TextReader::next_line() {
   return false;
 }
 
+namespace {
+
+// A plain unsigned decimal of at most 18 digits at p; nullptr for anything
+// else (signs, longer numbers: the caller falls back to the general path).
+const char* parse_small_unsigned(const char* p, const char* last, long long& value) {
+  const char* const start = p;
+  long long v = 0;
+  while (p < last && is_digit(*p) && p - start < 18) v = v * 10 + (*p++ - '0');
+  if (p == start || (p < last && is_digit(*p))) return nullptr;
+  value = v;
+  return p;
+}
+
+}  // namespace
+
 bool TextReader::try_point_line(long long expected_id, bool with_marker, double& x, double& y,
                                 long long& marker) {
   const char* p = text_.data() + pos_;
@@ -183,21 +374,26 @@ bool TextReader::try_point_line(long long expected_id, bool with_marker, double&
   };
   skip_blanks();
   long long id;
-  auto r = std::from_chars(p, stop, id);
-  if (r.ec != std::errc() || id != expected_id) return false;
-  p = r.ptr;
+  p = parse_small_unsigned(p, stop, id);
+  if (p == nullptr || id != expected_id) return false;
   for (double* out : {&x, &y}) {
     if (p == stop || (*p != ' ' && *p != '\t')) return false;
     skip_blanks();
-    const auto d = std::from_chars(p, stop, *out);
-    if (d.ec != std::errc() || !(*out - *out == 0.0)) return false;
-    p = d.ptr;
+    const char* end = parse_decimal_prefix(p, stop, *out);
+    if (end == nullptr) {
+      const auto d = std::from_chars(p, stop, *out);
+      if (d.ec != std::errc()) return false;
+      end = d.ptr;
+    }
+    if (!(*out - *out == 0.0)) return false;
+    p = end;
   }
   if (with_marker) {
     if (p == stop || (*p != ' ' && *p != '\t')) return false;
     skip_blanks();
-    r = std::from_chars(p, stop, marker);
-    if (r.ec != std::errc()) return false;
+    const auto r = std::from_chars(p, stop, marker);
+    // A marker outside int is an error the general path words.
+    if (r.ec != std::errc() || marker != static_cast<int>(marker)) return false;
     p = r.ptr;
   }
   while (p < stop && (*p == ' ' || *p == '\t' || *p == '\r')) ++p;

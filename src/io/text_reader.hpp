@@ -1,10 +1,13 @@
 // Fast line/token reader for the plain-text input formats.
 //
-// The whole file is read into memory with one read; lines are then split in
-// place into whitespace-separated tokens (string_views into the buffer).
+// A regular file is mapped into memory (no copy, no zero-filled buffer);
+// anything else (pipes, files the kernel reports as empty) is read whole.
+// Lines are split in place into whitespace-separated tokens (string_views
+// into the text).
 // `#` starts a comment anywhere on a line; blank and comment-only lines are
 // skipped; CRLF line ends and a missing final newline are fine. Numbers are
-// parsed with std::from_chars, never with iostreams. Every problem is
+// parsed by parse_decimal_prefix below when it can, else std::from_chars,
+// never with iostreams; both give the same bits. Every problem is
 // reported as ParseError(file, line, problem) naming the 1-based line.
 #pragma once
 #include <cstddef>
@@ -22,6 +25,15 @@ std::string read_whole_file(const std::string& path);
 
 enum class NumberStatus : std::uint8_t { Ok, NotANumber, NotAnInteger, OutOfRange };
 
+// The common spellings of a decimal number, fast: [-]digits[.digits][e[+-]digits]
+// with at most 19 significant digits and a result that is exactly the
+// correctly rounded double (Clinger's fast path, or a division in 64-bit
+// extended precision that is checked not to land on a rounding tie). Returns
+// the end of the number, or nullptr when the spelling or value is outside
+// that path: the caller then uses std::from_chars, which gives the same
+// value, so this never changes what a file means.
+const char* parse_decimal_prefix(const char* first, const char* last, double& value);
+
 // Parses the whole token as a double (a leading '+' is accepted, as strtod
 // does). NaN and infinities parse as such: finiteness is the caller's check.
 NumberStatus parse_double(std::string_view token, double& value);
@@ -32,8 +44,13 @@ NumberStatus parse_integer(std::string_view token, long long& value);
 class TextReader {
  public:
   TextReader(std::string file_name, std::string text);
-  // Reads `path` with read_whole_file.
+  // Maps `path` (a regular file) or reads it whole. Throws IoError as
+  // read_whole_file does.
   static TextReader open(const std::string& path);
+  ~TextReader();
+  // The tokens point into the text: neither copied nor moved.
+  TextReader(const TextReader&) = delete;
+  TextReader& operator=(const TextReader&) = delete;
 
   const std::string& file() const { return file_; }
 
@@ -49,7 +66,8 @@ class TextReader {
 
   // Fast path for the common entry line "<id> <x> <y> [<marker>]": parses
   // the next line in place when it is exactly that shape, with id ==
-  // expected_id and finite coordinates, and moves past it. Returns false,
+  // expected_id, finite coordinates and a marker that fits in an int, and
+  // moves past it. Returns false,
   // consuming nothing, for anything else (comments, blank lines, extra
   // fields, odd spellings, errors): the caller then takes the general path,
   // which gives the precise error message.
@@ -101,8 +119,16 @@ class TextReader {
   // Whether [from, end) holds a token before any comment.
   bool holds_data(std::size_t from, std::size_t end) const;
 
+  struct Mapping {
+    void* address = nullptr;
+    std::size_t length = 0;
+  };
+  TextReader(std::string file_name, Mapping mapping);
+
   std::string file_;
-  std::string text_;
+  std::string owned_;  // the text when it was read, not mapped
+  Mapping mapping_;    // the text when it was mapped
+  std::string_view text_;
   std::size_t pos_ = 0;        // start of the first unconsumed line
   std::size_t next_line_ = 1;  // its 1-based number
   std::size_t line_ = 0;
