@@ -154,17 +154,28 @@ class Sweep {
   };
   using Status = std::set<std::uint32_t, Below>;
 
+  // Boundary half-edges: real ones without a twin, and the twins of ghost
+  // triangles' finite edges (reached from the few ghosts, so the pass over
+  // the triangles reads memory in order).
   void collect() {
+    auto add = [&](HalfEdgeId e) {
+      const Point& a = mesh_.point(mesh_.origin(e));
+      const Point& b = mesh_.point(mesh_.dest(e));
+      if (lex_less(a, b)) edges_.push_back({a, b, e, +1});
+      else edges_.push_back({b, a, e, -1});
+    };
     for (TriId t = 0; t < mesh_.num_triangle_slots(); ++t) {
-      if (!mesh_.is_real(t)) continue;
+      if (mesh_.is_dead(t)) continue;
+      const bool ghost = mesh_.is_ghost(t);
       for (int i = 0; i < 3; ++i) {
         const HalfEdgeId e = 3 * t + i;
         const HalfEdgeId f = mesh_.twin(e);
-        if (f != kNone && mesh_.is_real(tri_of(f))) continue;
-        const Point& a = mesh_.point(mesh_.origin(e));
-        const Point& b = mesh_.point(mesh_.dest(e));
-        if (lex_less(a, b)) edges_.push_back({a, b, e, +1});
-        else edges_.push_back({b, a, e, -1});
+        if (!ghost) {
+          if (f == kNone) add(e);
+        } else if (mesh_.origin(e) != kInfinite && mesh_.dest(e) != kInfinite && f != kNone &&
+                   mesh_.is_real(tri_of(f))) {
+          add(f);
+        }
       }
     }
     removing_.assign(edges_.size(), 0);
