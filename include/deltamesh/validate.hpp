@@ -2,6 +2,7 @@
 // through it; the CLI runs it with -C.
 #pragma once
 #include <cstddef>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -30,8 +31,33 @@ struct CheckOptions {
   const Pslg* pslg = nullptr;
 };
 
+// Two triangles the global overlap test found in conflict, as data (the
+// problem text says the same with 0-based ids). Ids are triangle slots and
+// vertex ids of the mesh: in a compacted mesh (one from triangulate(), or
+// mesh_from_triangles() without inserted segments) slot t is the t-th
+// triangle write_ele() writes and the t-th triangle of the .ele it was read
+// from, 0-based; add the file's first index to print its own numbering.
+struct TriangleConflict {
+  enum class Kind : std::uint8_t {
+    // Their interiors intersect with positive area (crossing, nested,
+    // duplicated, or a vertex of one strictly inside the other).
+    Overlap,
+    // Interiors disjoint, but boundary edges of the two meet where they do
+    // not share an endpoint: a vertex inside the other's boundary edge
+    // (T-junction), or boundary edges lying along each other (an edge
+    // present twice without a twin link).
+    BoundaryContact,
+  };
+  Kind kind = Kind::Overlap;
+  TriId first = kNone;   // the smaller slot id
+  TriId second = kNone;  // kNone only if no second triangle could be named
+};
+
 struct CheckReport {
   std::vector<std::string> problems;  // empty: the mesh is valid
+  // The global overlap test stops at its first finding (the leftmost in
+  // (x, y) order), so this holds at most one entry; its text is in problems.
+  std::vector<TriangleConflict> conflicts;
   std::size_t triangles = 0;
   std::size_t edges = 0;
   std::size_t vertices_used = 0;
@@ -41,9 +67,23 @@ struct CheckReport {
 };
 
 // Twin symmetry, vertex<->edge consistency, exact positive orientation of
-// every triangle, Delaunay property of every unconstrained edge, hull
-// convexity, Euler characteristic of each connected piece, and with a PSLG
-// every segment present as a chain of constrained edges.
+// every triangle, no overlap anywhere (below), Delaunay property of every
+// unconstrained edge, hull convexity, Euler characteristic of each connected
+// piece, and with a PSLG every segment present as a chain of constrained
+// edges.
+//
+// Overlap, always checked once twins and orientations are right, whatever
+// the connectivity (separate components, pinch vertices, duplicated
+// vertices): no two triangles' interiors intersect, and two boundary edges
+// (edges with one triangle) meet only at a common endpoint (the same point,
+// even as two vertex ids). Touching at a vertex is fine; a triangle inside
+// another, a duplicated triangle, crossing boundary loops, a used vertex
+// strictly inside another triangle or inside another boundary edge
+// (T-junction), and an edge whose two triangles are not linked as twins
+// are all reported, naming both triangles (CheckReport::conflicts). Vertices
+// in no triangle are not looked at. A plane sweep over the boundary edges
+// with exact orientation tests, O(B log B) for B boundary edges plus one
+// pass over the triangles.
 CheckReport check(const Mesh& mesh, const CheckOptions& options = {});
 
 }  // namespace deltamesh

@@ -8,6 +8,7 @@
 #include <unordered_map>
 
 #include "deltamesh/predicates.hpp"
+#include "validate_overlap.hpp"
 
 namespace deltamesh {
 
@@ -35,6 +36,9 @@ class Checker {
     check_twins();
     if (!rep_.ok()) return;  // later checks assume a consistent topology
     check_orientation();
+    // The overlap test counts triangles by the boundary's winding number,
+    // which needs consistent twins and counter-clockwise triangles.
+    if (rep_.ok()) check_overlap();
     check_vertex_edges();
     if (opt_.delaunay) check_delaunay();
     check_boundary_and_euler();
@@ -105,6 +109,13 @@ class Checker {
       }
       if (!(orient2d(mesh_.point(v[0]), mesh_.point(v[1]), mesh_.point(v[2])) > 0))
         problem("triangle ", t, " (", v[0], ", ", v[1], ", ", v[2], ") is not counter-clockwise");
+    }
+  }
+
+  void check_overlap() {
+    if (auto found = detail::find_overlap(mesh_)) {
+      rep_.conflicts.push_back(found->conflict);
+      problem(found->message);
     }
   }
 
