@@ -4,11 +4,11 @@
 // switches.hpp, or from keywords) and call run(); so a switch means the same
 // thing in every front end.
 //
-//   deltamesh::Plan plan = deltamesh::parse_switches("pq30a0.01").plan;
+//   deltamesh::Plan plan = deltamesh::parse_arguments({"-pq30a0.01"}).plan;
 //   deltamesh::RunInput in;
 //   in.pslg = deltamesh::read_poly("plate.poly");
 //   deltamesh::RunResult r = deltamesh::run(plan, std::move(in));
-//   // r.mesh, r.stats.refine.complete, r.warnings(), r.check ...
+//   // r.mesh, r.complete(), r.warnings(), r.stats, r.check (with -C) ...
 #pragma once
 #include <cstddef>
 #include <functional>
