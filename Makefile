@@ -18,13 +18,15 @@ configure:
 build: configure
 	@cmake --build $(BUILD) -j $(JOBS)
 
-# Installs what is missing, builds, meshes a bundled example, prints
-# statistics and writes a picture.
-demo: deps build
+# Installs what is missing, builds the command line only, and makes a
+# quality mesh of the bundled plate (angles >= 30 degrees, areas <= 0.05):
+# statistics on the terminal, the mesh in out/, and a picture.
+demo: deps configure
+	@cmake --build $(BUILD) -j $(JOBS) --target deltamesh_cli
 	@mkdir -p out
-	@$(BUILD)/bin/deltamesh-gen uniform 2000 --seed 7 > out/demo.node
-	$(CLI) -V -C --svg out/demo.svg out/demo.node
-	@echo "demo: mesh written to out/demo.1.node, out/demo.1.ele; picture: out/demo.svg"
+	@cp examples/plate.poly out/plate.poly
+	$(CLI) -pq30a0.05 -V -C --svg out/plate.svg out/plate.poly
+	@echo "demo: mesh written to out/plate.1.node, out/plate.1.ele, out/plate.1.poly; picture: out/plate.svg"
 
 # The tools, the library (headers, static library, CMake package) and the
 # Python module; PREFIX defaults to /usr/local.

@@ -491,6 +491,19 @@ class Adapt(unittest.TestCase):
         self.assertGreater(min_angles(smooth).mean(), min_angles(rough).mean())
         self.assertGreaterEqual(min_angles(smooth).min(), 30 - 1e-9)
 
+    def test_sizes_per_vertex_when_segments_add_vertices(self):
+        """Vertices that inserting the mesh's segments adds (here where the
+        two diagonals cross) take their neighbours' mean size, as with the
+        command line's --adapt; before, per-vertex sizes were refused."""
+        square = dict(vertices=[[0, 0], [1, 0], [1, 1], [0, 1]], triangles=[[0, 1, 2], [0, 2, 3]],
+                      segments=[[0, 2], [1, 3]], segment_markers=[3, 4])
+        by_array = deltamesh.adapt(square, [0.1] * 4, "q30")
+        by_function = deltamesh.adapt(square, lambda x, y: 0.1, "q30")
+        deltamesh.validate(by_array, convex_hull=False)
+        self.assertTrue(np.array_equal(by_array["vertices"], by_function["vertices"]))
+        self.assertTrue(np.array_equal(by_array["triangles"], by_function["triangles"]))
+        self.assertTrue((np.abs(by_array["vertices"] - [0.5, 0.5]).max(axis=1) == 0).any())
+
     def test_bad_sizes_and_switches(self):
         v = self.fine["vertices"]
         with self.assertRaisesRegex(ValueError, "size: has 3 values, expected one per vertex"):
@@ -573,6 +586,9 @@ class Errors(unittest.TestCase):
             deltamesh.triangulate(dict(vertices=[[0, 0], [1, 0], [2, 0]]))
         self.assertIsInstance(cm.exception, ValueError)
         self.assertIsInstance(cm.exception, deltamesh.Error)
+        # A bug (a broken invariant) is not the input's fault: its own class.
+        self.assertTrue(issubclass(deltamesh.InternalError, deltamesh.Error))
+        self.assertFalse(issubclass(deltamesh.InternalError, deltamesh.InputError))
         with self.assertRaises(deltamesh.InputError):
             deltamesh.triangulate(dict(vertices=np.zeros((0, 2))))
         # zero attribute columns are fine

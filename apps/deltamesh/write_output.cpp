@@ -1,0 +1,68 @@
+// Writing the command line's output files: FILE.1.* in Triangle's formats,
+// and the --output / --svg files.
+#include <optional>
+
+#include "cli.hpp"
+
+namespace deltamesh::cli {
+
+std::vector<std::string> write_outputs(Session& s, const RunResult& r) {
+  const CommandLine& cl = s.cl;
+  const Mesh& mesh = r.mesh;
+  const std::string out_base = s.name.base + (cl.no_iteration ? "" : "." + std::to_string(s.name.iteration + 1));
+  TriangleWriteOptions wopt;
+  wopt.first_index = s.plan.zero_based ? 0 : s.first_index;
+  wopt.write_markers = s.plan.markers;
+  wopt.holes = s.holes;  // the output .poly describes the same domain
+  wopt.regions = s.regions;
+  wopt.midside = r.midside;  // -o2
+  std::vector<std::string> written;
+  auto emit = [&](bool enabled, const char* ext, auto writer) {
+    if (!enabled) return;
+    const std::string path = out_base + ext;
+    writer(mesh, path, wopt);
+    written.push_back(path);
+  };
+  // Triangle writes a .poly when it read one, and for a point set with -c.
+  // With --output, only the named files (and those of -e -n -v -g) are written.
+  const bool only_named = !cl.outputs.empty();
+  const bool poly_file = !only_named && !cl.no_poly && (s.plan.uses_segments() || s.plan.domain.convex_hull);
+  emit(!only_named && !cl.no_node, ".node", [](auto& m, auto& p, auto& w) { write_node(m, p, w); });
+  emit(!only_named && !cl.no_ele, ".ele", [](auto& m, auto& p, auto& w) { write_ele(m, p, w); });
+  emit(poly_file, ".poly", [](auto& m, auto& p, auto& w) { write_poly(m, p, w); });
+  emit(s.plan.edges, ".edge", [](auto& m, auto& p, auto& w) { write_edge(m, p, w); });
+  emit(s.plan.neighbors, ".neigh", [](auto& m, auto& p, auto& w) { write_neigh(m, p, w); });
+  emit(cl.geomview, ".off", [](auto& m, auto& p, auto&) { write_off(m, p); });
+  if (cl.voronoi) {
+    const VoronoiDiagram vd = voronoi_diagram(mesh);
+    write_voronoi_node(vd, out_base + ".v.node", wopt.first_index);
+    written.push_back(out_base + ".v.node");
+    write_voronoi_edge(vd, out_base + ".v.edge", wopt.first_index);
+    written.push_back(out_base + ".v.edge");
+  }
+  std::optional<BoundedVoronoi> cells;
+  if (cl.voronoi_overlay && !cl.outputs.empty()) cells = bounded_voronoi(mesh);
+  for (const std::string& path : cl.outputs) {
+    OutputOptions oopt;
+    oopt.first_index = wopt.first_index;
+    oopt.write_markers = wopt.write_markers;
+    oopt.svg.title = cl.input;
+    oopt.msh.version = cl.msh_v22 ? MshVersion::V22 : MshVersion::V41;
+    oopt.vtk.binary = cl.vtu_binary;
+    oopt.geojson.segments = cl.geojson_segments;
+    oopt.msh.second_order.midside = r.midside;
+    oopt.vtk.second_order.midside = r.midside;
+    if (cells) oopt.voronoi = &*cells;
+    write_output(mesh, path, oopt);
+    written.push_back(path);
+  }
+  if (cl.svg_path) {
+    SvgOptions sopt;
+    sopt.title = cl.input;
+    write_svg(mesh, *cl.svg_path, sopt);
+    written.push_back(*cl.svg_path);
+  }
+  return written;
+}
+
+}  // namespace deltamesh::cli

@@ -1,0 +1,87 @@
+// Triangle's switch string (-pq30a0.1) and deltamesh's long options, parsed
+// into a Plan (pipeline.hpp) plus what only a command line needs: the input
+// file, which output files and formats, messages. The command line and the
+// Python bindings use this one parser, so a switch means the same in both.
+#pragma once
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "deltamesh/errors.hpp"
+#include "deltamesh/pipeline.hpp"
+
+namespace deltamesh {
+
+// The command line's documented exit codes (docs/cli.md).
+enum ExitCode : int {
+  kExitOk = 0,
+  kExitUsage = 1,        // bad switches or arguments, or a switch not available yet
+  kExitInput = 2,        // input file missing, unreadable or malformed; input not meshable
+  kExitBudget = 3,       // a budget stopped refinement before the requested quality, or triangles are left too large
+  kExitOutput = 4,       // an output file could not be written
+  kExitCheckFailed = 5,  // -C found the mesh invalid
+  kExitInternal = 70,    // a bug: please report it
+};
+
+// A switch or option that cannot be parsed; the message names it.
+class UsageError : public Error {
+ public:
+  using Error::Error;
+};
+
+struct CommandLine {
+  Plan plan;
+
+  std::string input;  // the FILE argument as given
+  // Output files.
+  bool no_poly = false;       // -P
+  bool no_node = false;       // -N
+  bool no_ele = false;        // -E
+  bool no_iteration = false;  // -I
+  bool voronoi = false;       // -v  FILE.1.v.node, FILE.1.v.edge
+  bool geomview = false;      // -g  FILE.1.off
+  std::optional<std::string> svg_path;  // --svg PATH
+  std::vector<std::string> outputs;     // --output PATH (format from the extension); when given, only these
+                                        // (and -e -n -v -g files) are written, not FILE.1.node/.ele/.poly
+  bool msh_v22 = false;                 // --msh-version=2.2 (default 4.1)
+  bool vtu_binary = false;              // --vtu-binary
+  bool geojson_segments = false;        // --geojson-segments
+  bool voronoi_overlay = false;         // --voronoi-overlay (bounded Voronoi cells in .svg/.geojson)
+  bool stats_json = false;              // --stats=json
+  // GeoJSON input.
+  std::string region_property;  // --region-property NAME
+  std::string area_property;    // --area-property NAME
+  // Messages.
+  bool help = false;     // -h / --help
+  bool version = false;  // --version
+  // Triangle's algorithm choices accepted for compatibility (-i -F -l -X
+  // -s), explained with -V.
+  std::vector<char> compat_notes;
+  // Switches parsed but not available (-u): each given one named, e.g.
+  // "-u (user size function: ...)"; the command line refuses to run.
+  std::vector<std::string> unavailable;
+
+  // The switches as written, before a front end changes the plan (GeoJSON
+  // input is meshed like -p): -p, -r, --adapt (which implies -r).
+  bool poly = false;
+  bool refine = false;
+  bool adapt = false;
+};
+
+// Parses argv (switch strings, long options, one FILE). Throws UsageError
+// with a message naming the offending switch.
+CommandLine parse_arguments(const std::vector<std::string>& args);
+
+// Sets what one long option that takes a value (--cdt, --min-angle, ...;
+// `name` with its dashes) says, with the command line's checks and messages.
+void apply_long_option(CommandLine& cl, std::string_view name, std::string_view value);
+
+// (parse_cdt_method, parse_steiner_rule, parse_encroachment_rule: cdt.hpp, refine.hpp)
+std::optional<FillRule> parse_fill_rule(std::string_view name);    // "holes", "evenodd" ("even-odd")
+std::optional<RefineOrder> parse_refine_order(std::string_view name);  // "shortest", "worst"
+
+// The command line's --help.
+std::string help_text();
+
+}  // namespace deltamesh
