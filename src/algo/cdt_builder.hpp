@@ -13,6 +13,7 @@
 #include "deltamesh/cdt.hpp"
 #include "deltamesh/mesh.hpp"
 #include "deltamesh/pslg.hpp"
+#include "mesh/legalize.hpp"
 
 namespace deltamesh::detail {
 
@@ -82,6 +83,7 @@ class CdtBuilder {
   // Fast met a cavity that encloses triangles: Lifting instead.
   void fast_gave_up(VertexId a, VertexId b, std::uint32_t seg);
   bool in_fallback_ = false;
+  // constrained_lawson() (mesh/legalize.hpp) from `stack`, flips counted in the stats.
   void lawson_flips(std::vector<HalfEdgeId>& stack);
   bool crosses(VertexId a, VertexId b, VertexId c, VertexId d) const;
 
@@ -167,10 +169,5 @@ class CdtBuilder {
 // vertex v became (itself, or an earlier copy of its point).
 bool chain_order_cdt(Mesh& mesh, const Pslg& pslg, const CdtOptions& options, CdtStats& stats,
                      std::vector<VertexId>& first_copy);
-
-// Constrained Lawson flips over the real triangles (ghosts and dead slots are
-// left alone) until every unconstrained edge is locally Delaunay. Returns the
-// number of flips.
-std::size_t constrained_lawson_flips(Mesh& mesh);
 
 }  // namespace deltamesh::detail

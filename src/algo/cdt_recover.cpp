@@ -14,17 +14,14 @@
 #include "algo/cdt_builder.hpp"
 #include "deltamesh/errors.hpp"
 #include "deltamesh/predicates.hpp"
+#include "mesh/edge_rules.hpp"
+#include "mesh/legalize.hpp"
 
 namespace deltamesh::detail {
 
 namespace {
 
-inline std::uint64_t edge_key(VertexId u, VertexId v) {
-  if (u > v) std::swap(u, v);
-  return (static_cast<std::uint64_t>(u) << 32) | v;
-}
-
-[[noreturn]] void internal(const std::string& what) { throw InputError("internal error: " + what); }
+[[noreturn]] void internal(const char* where, const std::string& what) { throw InternalError(where, what); }
 
 }  // namespace
 
@@ -204,7 +201,7 @@ void CdtBuilder::recover_fast(VertexId a, [[maybe_unused]] VertexId b, std::uint
       for (std::uint32_t m = j.lo + 2; m < j.hi; ++m)
         if (incircle(pu, pv, pt(chain[c]), pt(chain[m])) > 0) c = m;
       const VertexId vc = chain[c];
-      if (next_slot >= slots_.size()) internal("cavity retriangulation needs more triangles than it removed");
+      if (next_slot >= slots_.size()) internal("CdtBuilder::recover_fast", "cavity retriangulation needs more triangles than it removed");
       const TriId t = slots_[next_slot++];
       const HalfEdgeId e = 3 * t;
       tv_[e] = u;
@@ -252,14 +249,14 @@ void CdtBuilder::recover_fast(VertexId a, [[maybe_unused]] VertexId b, std::uint
   st_.cavity_triangles += slots_.size();
   mark(top_left, seg);
   if (cut_vertices_.empty()) {
-    if (next_slot != slots_.size()) internal("cavity retriangulation left triangles over");
+    if (next_slot != slots_.size()) internal("CdtBuilder::recover_fast", "cavity retriangulation left triangles over");
     return;
   }
   for (std::size_t i = next_slot; i < slots_.size(); ++i) mesh_.remove_triangle(slots_[i]);
   for (VertexId v : cut_vertices_) ve_[v] = kNone;
   for (VertexId v : cut_vertices_) {
     if (inserter_.insert_existing(v, tri_of(top_left)).vertex != v)
-      internal("a vertex enclosed by a segment's cavity could not be inserted again");
+      internal("CdtBuilder::recover_fast", "a vertex enclosed by a segment's cavity could not be inserted again");
   }
 }
 
@@ -267,7 +264,7 @@ void CdtBuilder::recover_fast(VertexId a, [[maybe_unused]] VertexId b, std::uint
 // Ct and Lawson.
 
 void CdtBuilder::fallback_fast(VertexId a, VertexId b, std::uint32_t seg) {
-  if (in_fallback_) internal("no recovery method could insert a segment piece");
+  if (in_fallback_) internal("CdtBuilder::fallback_fast", "no recovery method could insert a segment piece");
   ++st_.method_fallbacks;
   struct Guard {
     bool& flag;
@@ -279,7 +276,7 @@ void CdtBuilder::fallback_fast(VertexId a, VertexId b, std::uint32_t seg) {
     mark(tr.edge, seg);
     return;
   }
-  if (tr.kind != TraceKind::Clean) internal("a segment piece changed while it was recovered");
+  if (tr.kind != TraceKind::Clean) internal("CdtBuilder::fallback_fast", "a segment piece changed while it was recovered");
   recover_fast(a, b, seg);
 }
 
@@ -336,7 +333,7 @@ void CdtBuilder::recover_flips(VertexId a, VertexId b, std::uint32_t seg, bool l
   }
   if (done) {
     const HalfEdgeId ab = mesh_.find_edge(a, b);
-    if (ab == kNone) internal("no crossing edge is left but the segment is not an edge");
+    if (ab == kNone) internal("CdtBuilder::recover_flips", "no crossing edge is left but the segment is not an edge");
     mark(ab, seg);
   } else {
     fallback_fast(a, b, seg);
@@ -348,24 +345,8 @@ void CdtBuilder::recover_flips(VertexId a, VertexId b, std::uint32_t seg, bool l
 // pushed is locally Delaunay. A flip pushes the four edges around it, so
 // an edge that changes neighbours is always looked at again.
 void CdtBuilder::lawson_flips(std::vector<HalfEdgeId>& stack) {
-  while (!stack.empty()) {
-    const HalfEdgeId e = stack.back();
-    stack.pop_back();
-    if (flags_[e] & kConstrained) continue;
-    const HalfEdgeId f = tw_[e];
-    const VertexId a = tv_[e], b = tv_[next_edge(e)], c = tv_[prev_edge(e)], d = tv_[prev_edge(f)];
-    // Hull edges and edges to the vertex at infinity are locally Delaunay.
-    if (a == kInfinite || b == kInfinite || c == kInfinite || d == kInfinite) continue;
-    if (!(incircle(pt(a), pt(b), pt(c), pt(d)) > 0)) continue;
-    // d inside the circle of abc, on the other side of ab: the quadrilateral
-    // is strictly convex, so the flip is valid.
-    mesh_.flip(e);  // e's slot becomes (c, a, d), f's (d, b, c)
-    ++st_.flips;
-    stack.push_back(e);
-    stack.push_back(next_edge(e));
-    stack.push_back(f);
-    stack.push_back(next_edge(f));
-  }
+  MeshTopology topo(mesh_);
+  st_.flips += constrained_lawson(topo, stack);
 }
 
 // ---------------------------------------------------------------------------

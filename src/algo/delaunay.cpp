@@ -12,6 +12,8 @@
 #include "core/spatial_sort.hpp"
 #include "deltamesh/errors.hpp"
 #include "deltamesh/predicates.hpp"
+#include "mesh/legalize.hpp"
+#include "mesh/locate.hpp"
 
 namespace deltamesh {
 
@@ -39,14 +41,9 @@ void make_first_triangle(Mesh& mesh, VertexId a, VertexId b, VertexId c) {
 }
 
 
-// Local index arithmetic without repeated divisions: the hot loops split a
-// half-edge into (base, i) once and look up the other two.
-constexpr std::uint8_t kNextIndex[3] = {1, 2, 0};
-constexpr std::uint8_t kPrevIndex[3] = {2, 0, 1};
-
-// The bulk builder: the same split + Lawson flips as detail::DelaunayInserter,
-// on raw arrays sized once, without per-vertex out-edges (compact() rebuilds
-// them), because this loop is where a 10^6-point triangulation spends its time.
+// The bulk builder: split + Lawson flips (mesh/legalize.hpp) on raw arrays
+// sized once, without per-vertex out-edges (compact() rebuilds them), because
+// this loop is where a 10^6-point triangulation spends its time.
 class BulkBuilder {
  public:
   BulkBuilder(Mesh& mesh, std::size_t max_triangles)
@@ -67,76 +64,33 @@ class BulkBuilder {
   // Inserts vertex v; returns v, or the vertex it coincides with. `hint`
   // (a real triangle) is updated to a triangle near v for the next walk.
   VertexId insert(VertexId v, TriId& hint) {
-    const Point& p = p_[v];
-    // Visibility walk. In a Delaunay triangulation it cannot cycle, so the
-    // edges are tried in a fixed order; the entry edge is never an exit.
-    HalfEdgeId base = 3 * hint;
-    const double o0 = orient2d(p_[v_[base]], p_[v_[base + 1]], p);
-    const double o1 = orient2d(p_[v_[base + 1]], p_[v_[base + 2]], p);
-    const double o2 = orient2d(p_[v_[base + 2]], p_[v_[base]], p);
-    HalfEdgeId exit = o0 < 0 ? base : o1 < 0 ? base + 1 : o2 < 0 ? base + 2 : kNone;
-    if (exit == kNone) return insert_in_closed(v, base, o0, o1, o2, hint);
-    for (;;) {
-      const HalfEdgeId from = tw_[exit];
-      const unsigned i = from % 3;
-      base = from - i;
-      const HalfEdgeId e1 = base + kNextIndex[i], e2 = base + kPrevIndex[i];
-      const VertexId va = v_[from], vb = v_[e1], vc = v_[e2];
-      if (vc == kInfinite || va == kInfinite || vb == kInfinite) {
-        // Crossed a hull edge: p sees it from outside; the ghost takes p.
-        split(tri_of(from), v);
+    // In a Delaunay triangulation the walk cannot cycle, so the edges are
+    // tried in a fixed order.
+    const Location loc = detail::visibility_walk(v_, tw_, p_, p_[v], hint, detail::FixedEdgeOrder{}).loc;
+    switch (loc.kind) {
+      case Location::Kind::OnVertex:
+        hint = loc.tri;
+        return loc.vertex;
+      case Location::Kind::OnEdge:
+        split_edge(loc.edge, v);
         break;
-      }
-      const double oa = orient2d(p_[vb], p_[vc], p);  // edge e1
-      if (oa < 0) {
-        exit = e1;
-        continue;
-      }
-      const double ob = orient2d(p_[vc], p_[va], p);  // edge e2
-      if (ob < 0) {
-        exit = e2;
-        continue;
-      }
-      // Inside the closed triangle; the entry edge has p strictly left.
-      double o[3];
-      o[i] = 1.0;
-      o[kNextIndex[i]] = oa;
-      o[kPrevIndex[i]] = ob;
-      return insert_in_closed(v, base, o[0], o[1], o[2], hint);
+      case Location::Kind::InTriangle:
+      case Location::Kind::Outside:  // the ghost beyond the hull edge p sees takes p
+        split(loc.tri, v);
+        break;
     }
-    legalize(v);
-    hint = real_near(last_);
+    detail::MeshArrays arrays;
+    arrays.tv = v_;
+    arrays.tw = tw_;
+    arrays.pts = p_;
+    detail::RawTopology<detail::kCarryTopologyOnly> topo(arrays);
+    const HalfEdgeId last = detail::legalize_around_vertex(topo, v, stack_).last;
+    hint = detail::real_triangle_near(v_, tw_, tri_of(last));
     return v;
   }
 
  private:
-  // p lies in the closed real triangle at `base`, with orientations o0..o2
-  // against its three edges (none negative).
-  VertexId insert_in_closed(VertexId v, HalfEdgeId base, double o0, double o1, double o2, TriId& hint) {
-    const int zeros = (o0 == 0) + (o1 == 0) + (o2 == 0);
-    if (zeros == 2) {  // on the vertex both zero edges share
-      const unsigned k = o0 != 0 ? 2 : o1 != 0 ? 0 : 1;
-      hint = tri_of(base);
-      return v_[base + k];
-    }
-    if (zeros == 1)
-      split_edge(o0 == 0 ? base : o1 == 0 ? base + 1 : base + 2, v);
-    else
-      split(tri_of(base), v);
-    legalize(v);
-    hint = real_near(last_);
-    return v;
-  }
-
   void push(HalfEdgeId e) { stack_.push_back(e); }
-  // t itself, or the real triangle across a ghost's hull edge.
-  TriId real_near(TriId t) const {
-    for (int i = 0; i < 3; ++i) {
-      const HalfEdgeId e = 3 * t + i;
-      if (v_[e] == kInfinite) return tri_of(tw_[3 * t + kNextIndex[i]]);
-    }
-    return t;
-  }
 
   // Triangle t = (a, b, c) becomes (a, b, v) + new (b, c, v) + new (c, a, v).
   void split(TriId t, VertexId v) {
@@ -171,10 +125,10 @@ class BulkBuilder {
   // (a, v, c), new (v, b, c), (b, v, d), new (v, a, d).
   void split_edge(HalfEdgeId e, VertexId v) {
     const unsigned ie = e % 3;
-    const HalfEdgeId e1 = e - ie + kNextIndex[ie], e2 = e - ie + kPrevIndex[ie];
+    const HalfEdgeId e1 = e - ie + detail::kNextIndex[ie], e2 = e - ie + detail::kPrevIndex[ie];
     const HalfEdgeId f = tw_[e];
     const unsigned jf = f % 3;
-    const HalfEdgeId f1 = f - jf + kNextIndex[jf], f2 = f - jf + kPrevIndex[jf];
+    const HalfEdgeId f1 = f - jf + detail::kNextIndex[jf], f2 = f - jf + detail::kPrevIndex[jf];
     const VertexId a = v_[e], b = v_[e1], c = v_[e2], d = v_[f2];
     const HalfEdgeId tw_bc = tw_[e1], tw_ad = tw_[f1];
     const HalfEdgeId g0 = static_cast<HalfEdgeId>(used_), h0 = g0 + 3;
@@ -205,60 +159,12 @@ class BulkBuilder {
     push(h0 + 1);
   }
 
-  void legalize(VertexId v) {
-    const Point& p = p_[v];
-    while (!stack_.empty()) {
-      const HalfEdgeId e = stack_.back();
-      stack_.pop_back();
-      const unsigned ie = e % 3;
-      const HalfEdgeId be = e - ie;
-      last_ = be / 3;
-      const HalfEdgeId e1 = be + kNextIndex[ie], e2 = be + kPrevIndex[ie];
-      const HalfEdgeId f = tw_[e];
-      const unsigned jf = f % 3;
-      const HalfEdgeId bf = f - jf;
-      const HalfEdgeId f1 = bf + kNextIndex[jf], f2 = bf + kPrevIndex[jf];
-      const VertexId a = v_[e], b = v_[e1], d = v_[f2];
-      bool flip_it;
-      if (d == kInfinite)
-        flip_it = false;
-      else if (b == kInfinite)
-        flip_it = orient2d(p_[a], p_[d], p) > 0;
-      else if (a == kInfinite)
-        flip_it = orient2d(p_[d], p_[b], p) > 0;
-      else
-        flip_it = incircle(p_[a], p_[b], p, p_[d]) > 0;
-      if (!flip_it) continue;
-      // (a, b, v) + (b, a, d) become (v, a, d) in e's slot and (d, b, v) in f's.
-      const HalfEdgeId tw_bc = tw_[e1], tw_ca = tw_[e2], tw_ad = tw_[f1], tw_db = tw_[f2];
-      v_[e] = v;
-      v_[e1] = a;
-      v_[e2] = d;
-      v_[f] = d;
-      v_[f1] = b;
-      v_[f2] = v;
-      tw_[e] = tw_ca;
-      tw_[tw_ca] = e;
-      tw_[e1] = tw_ad;
-      tw_[tw_ad] = e1;
-      tw_[f] = tw_db;
-      tw_[tw_db] = f;
-      tw_[f1] = tw_bc;
-      tw_[tw_bc] = f1;
-      tw_[e2] = f2;
-      tw_[f2] = e2;
-      push(e1);
-      push(f);
-    }
-  }
-
   Mesh& mesh_;
   std::size_t used_;  // half-edge slots in use
   VertexId* v_ = nullptr;
   HalfEdgeId* tw_ = nullptr;
   const Point* p_;
   std::vector<HalfEdgeId> stack_;
-  TriId last_ = 0;
 };
 
 }  // namespace

@@ -4,6 +4,8 @@
 #include <cassert>
 
 #include "deltamesh/predicates.hpp"
+#include "mesh/flip.hpp"
+#include "mesh/locate.hpp"
 
 namespace deltamesh {
 
@@ -95,59 +97,20 @@ void Mesh::set_edge_marker(HalfEdgeId e, int marker) {
 }
 
 HalfEdgeId Mesh::flip(HalfEdgeId e) {
-  const HalfEdgeId f = twin_[e];
-  assert(f != kNone);
-  const TriId t1 = tri_of(e), t2 = tri_of(f);
+  assert(twin_[e] != kNone);
+  const TriId t1 = tri_of(e), t2 = tri_of(twin_[e]);
   note_removed(t1);
   note_removed(t2);
-  const HalfEdgeId e0 = e, e1 = next_edge(e), e2 = prev_edge(e);
-  const HalfEdgeId f0 = f, f1 = next_edge(f), f2 = prev_edge(f);
-  const VertexId a = tri_v_[e0], b = tri_v_[e1], c = tri_v_[e2], d = tri_v_[f2];
-  const HalfEdgeId tw_bc = twin_[e1], tw_ca = twin_[e2], tw_ad = twin_[f1], tw_db = twin_[f2];
-  // t1 becomes (c, a, d), t2 becomes (d, b, c).
-  tri_v_[e0] = c;
-  tri_v_[e1] = a;
-  tri_v_[e2] = d;
-  tri_v_[f0] = d;
-  tri_v_[f1] = b;
-  tri_v_[f2] = c;
-  auto relink = [&](HalfEdgeId x, HalfEdgeId y) {
-    twin_[x] = y;
-    if (y != kNone) twin_[y] = x;
-  };
-  relink(e0, tw_ca);
-  relink(e1, tw_ad);
-  relink(f0, tw_db);
-  relink(f1, tw_bc);
-  twin_[e2] = f2;
-  twin_[f2] = e2;
-  if (!edge_flags_.empty()) {
-    const std::uint8_t fl_bc = edge_flags_[e1], fl_ca = edge_flags_[e2], fl_ad = edge_flags_[f1],
-                       fl_db = edge_flags_[f2];
-    edge_flags_[e0] = fl_ca;
-    edge_flags_[e1] = fl_ad;
-    edge_flags_[e2] = 0;
-    edge_flags_[f0] = fl_db;
-    edge_flags_[f1] = fl_bc;
-    edge_flags_[f2] = 0;
-  }
-  if (!edge_markers_.empty()) {
-    const int m_bc = edge_markers_[e1], m_ca = edge_markers_[e2], m_ad = edge_markers_[f1], m_db = edge_markers_[f2];
-    edge_markers_[e0] = m_ca;
-    edge_markers_[e1] = m_ad;
-    edge_markers_[e2] = 0;
-    edge_markers_[f0] = m_db;
-    edge_markers_[f1] = m_bc;
-    edge_markers_[f2] = 0;
-  }
-  // Keep each vertex's out-edge pointing at an edge that plays the same role.
-  if (a != kInfinite && (vert_edge_[a] == e0 || vert_edge_[a] == f1)) vert_edge_[a] = e1;
-  if (b != kInfinite && (vert_edge_[b] == e1 || vert_edge_[b] == f0)) vert_edge_[b] = f1;
-  if (c != kInfinite && vert_edge_[c] == e2) vert_edge_[c] = e0;
-  if (d != kInfinite && vert_edge_[d] == f2) vert_edge_[d] = f0;
+  detail::MeshArrays a;
+  a.tv = tri_v_.data();
+  a.tw = twin_.data();
+  a.flags = edge_flags_.empty() ? nullptr : edge_flags_.data();
+  a.markers = edge_markers_.empty() ? nullptr : edge_markers_.data();
+  a.out = vert_edge_.data();
+  const HalfEdgeId cd = detail::flip_arrays<detail::kCarryAll>(a, e);
   note_added(t1);
   note_added(t2);
-  return f2;
+  return cd;
 }
 
 HalfEdgeId Mesh::split_triangle(TriId t, VertexId p) {
@@ -355,18 +318,7 @@ void Mesh::unsplit_edge(HalfEdgeId g) {
   compacted_ = false;
 }
 
-namespace {
-// Small deterministic generator for the walk's random edge order.
-inline std::uint32_t walk_random(std::uint64_t& s) {
-  s ^= s << 13;
-  s ^= s >> 7;
-  s ^= s << 17;
-  return static_cast<std::uint32_t>(s >> 32);
-}
-}  // namespace
-
 Location Mesh::locate(const Point& p, TriId start) const {
-  Location loc;
   const std::size_t slots = num_triangle_slots();
   if (start == kNone || start >= slots || is_dead(start)) {
     start = kNone;
@@ -375,88 +327,13 @@ Location Mesh::locate(const Point& p, TriId start) const {
         start = t;
         break;
       }
-    if (start == kNone) return loc;
+    if (start == kNone) return Location{};
   }
-  TriId t = start;
-  if (is_ghost(t)) {
-    // Step to the real triangle across the ghost's real edge.
-    for (int i = 0; i < 3; ++i) {
-      const HalfEdgeId e = 3 * t + i;
-      if (tri_v_[e] != kInfinite && tri_v_[next_edge(e)] != kInfinite) {
-        t = tri_of(twin_[e]);
-        break;
-      }
-    }
-  }
-  std::uint64_t rng = 0x9E3779B97F4A7C15ull ^ static_cast<std::uint64_t>(t);
+  const TriId t = detail::real_triangle_near(tri_v_.data(), twin_.data(), start);
   // A visibility walk visits at most every triangle once per pass when it
   // cannot cycle; the bound only guards against a corrupt mesh.
-  for (std::size_t steps = 0; steps <= 4 * slots + 16; ++steps) {
-    const HalfEdgeId base = 3 * t;
-    const std::uint32_t r = walk_random(rng) % 3;
-    HalfEdgeId exit = kNone;
-    int zeros = 0;
-    HalfEdgeId zero_edge = kNone;
-    for (std::uint32_t k = 0; k < 3; ++k) {
-      const HalfEdgeId e = base + (r + k) % 3;
-      const Point& a = points_[tri_v_[e]];
-      const Point& b = points_[tri_v_[next_edge(e)]];
-      const double o = orient2d(a, b, p);
-      if (o < 0) {
-        exit = e;
-        break;
-      }
-      if (o == 0) {
-        ++zeros;
-        zero_edge = e;
-      }
-    }
-    if (exit == kNone) {
-      if (zeros == 0) {
-        loc.kind = Location::Kind::InTriangle;
-        loc.tri = t;
-        return loc;
-      }
-      if (zeros == 1) {
-        loc.kind = Location::Kind::OnEdge;
-        loc.tri = t;
-        loc.edge = zero_edge;
-        return loc;
-      }
-      // Two zero orientations: p is the vertex the two edges share.
-      for (int i = 0; i < 3; ++i) {
-        if (points_[tri_v_[base + i]] == p) {
-          loc.kind = Location::Kind::OnVertex;
-          loc.tri = t;
-          loc.vertex = tri_v_[base + i];
-          loc.edge = base + i;
-          return loc;
-        }
-      }
-      loc.kind = Location::Kind::OnEdge;  // unreachable for a valid mesh
-      loc.tri = t;
-      loc.edge = zero_edge;
-      return loc;
-    }
-    const HalfEdgeId across = twin_[exit];
-    if (across == kNone) {  // compacted mesh: p is outside the domain here
-      loc.kind = Location::Kind::Outside;
-      loc.tri = t;
-      loc.edge = exit;
-      return loc;
-    }
-    const TriId u = tri_of(across);
-    if (is_ghost(u)) {
-      loc.kind = Location::Kind::Outside;
-      loc.tri = u;
-      loc.edge = across;
-      return loc;
-    }
-    t = u;
-  }
-  loc.kind = Location::Kind::Outside;
-  loc.tri = kNone;
-  return loc;
+  detail::RandomRotationOrder order{0x9E3779B97F4A7C15ull ^ static_cast<std::uint64_t>(t)};
+  return detail::visibility_walk(tri_v_.data(), twin_.data(), points_.data(), p, t, order, 4 * slots + 16).loc;
 }
 
 void Mesh::compact() {
