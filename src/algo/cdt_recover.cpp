@@ -345,7 +345,7 @@ void CdtBuilder::recover_flips(VertexId a, VertexId b, std::uint32_t seg, bool l
 // pushed is locally Delaunay. A flip pushes the four edges around it, so
 // an edge that changes neighbours is always looked at again.
 void CdtBuilder::lawson_flips(std::vector<HalfEdgeId>& stack) {
-  MeshTopology topo(mesh_);
+  auto topo = lawson_topology(mesh_);
   st_.flips += constrained_lawson(topo, stack);
 }
 

@@ -47,20 +47,29 @@ enum FlipCarry : unsigned {
   kCarryAll = kCarryFlags | kCarryMarkers | kCarryOutEdges | kOpenTwins,
 };
 
+// The six half-edges of the quadrilateral around the edge of e: e = a -> b,
+// e1 = b -> c, e2 = c -> a in one triangle, f = b -> a, f1 = a -> d,
+// f2 = d -> b in the other (local indices by table, no division per edge).
+struct FlipQuad {
+  HalfEdgeId e, e1, e2, f, f1, f2;
+};
+inline FlipQuad flip_quad(const HalfEdgeId* tw, HalfEdgeId e) {
+  const unsigned ie = e % 3;
+  const HalfEdgeId f = tw[e];
+  const unsigned jf = f % 3;
+  return {e, e - ie + kNextIndex[ie], e - ie + kPrevIndex[ie], f, f - jf + kNextIndex[jf], f - jf + kPrevIndex[jf]};
+}
+
 // Flips the edge of half-edge e = (a, b) between (a, b, c) and (b, a, d)
 // into (c, d): e's slot becomes (c, a, d), its twin's (d, b, c); both keep
 // their slots. Flags and markers move with the edges they belong to; the
 // new edge gets none. Returns the new half-edge c -> d. The caller
 // guarantees the quadrilateral is strictly convex.
 template <unsigned Carry>
-inline HalfEdgeId flip_arrays(const MeshArrays& m, HalfEdgeId e) {
+inline HalfEdgeId flip_arrays(const MeshArrays& m, const FlipQuad& q) {
+  const HalfEdgeId e0 = q.e, e1 = q.e1, e2 = q.e2, f0 = q.f, f1 = q.f1, f2 = q.f2;
   VertexId* const tv = m.tv;
   HalfEdgeId* const tw = m.tw;
-  const unsigned ie = e % 3;
-  const HalfEdgeId e0 = e, e1 = e - ie + kNextIndex[ie], e2 = e - ie + kPrevIndex[ie];
-  const HalfEdgeId f0 = tw[e];
-  const unsigned jf = f0 % 3;
-  const HalfEdgeId f1 = f0 - jf + kNextIndex[jf], f2 = f0 - jf + kPrevIndex[jf];
   const VertexId a = tv[e0], b = tv[e1], c = tv[e2], d = tv[f2];
   const HalfEdgeId tw_bc = tw[e1], tw_ca = tw[e2], tw_ad = tw[f1], tw_db = tw[f2];
   tv[e0] = c;
@@ -114,6 +123,11 @@ inline HalfEdgeId flip_arrays(const MeshArrays& m, HalfEdgeId e) {
     if (d != kInfinite && ve[d] == f2) ve[d] = f0;
   }
   return f2;
+}
+
+template <unsigned Carry>
+inline HalfEdgeId flip_arrays(const MeshArrays& m, HalfEdgeId e) {
+  return flip_arrays<Carry>(m, flip_quad(m.tw, e));
 }
 
 }  // namespace deltamesh::detail

@@ -7,7 +7,7 @@ std::size_t constrained_lawson_flips(Mesh& mesh) {
   const std::size_t halves = mesh.triangle_vertices().size();
   for (HalfEdgeId e = 0; e < halves; ++e)
     if (mesh.is_real(tri_of(e)) && mesh.twin(e) != kNone && e < mesh.twin(e)) stack.push_back(e);
-  MeshTopology topo(mesh);
+  auto topo = lawson_topology(mesh);
   return constrained_lawson(topo, stack);
 }
 

@@ -36,15 +36,20 @@ class MeshTopology {
   double in_circle(const Point& a, const Point& b, const Point& c, const Point& d) const {
     return incircle(a, b, c, d);
   }
-  void flip(HalfEdgeId e) { m_.flip(e); }
+  FlipQuad quad(HalfEdgeId e) const {
+    const HalfEdgeId f = m_.twin(e);
+    return {e, next_edge(e), prev_edge(e), f, f == kNone ? kNone : next_edge(f), f == kNone ? kNone : prev_edge(f)};
+  }
+  void flip(const FlipQuad& q) { m_.flip(q.e); }
 
  private:
   Mesh& m_;
 };
 
-// Raw arrays of a closed triangulation (every twin set). Carry says which
-// optional arrays flips keep (flip.hpp); constrained edges are known only
-// when flags are carried. The caller keeps live-triangle counts itself.
+// Raw arrays of a mesh. Carry says which optional arrays flips keep
+// (flip.hpp); constrained edges are known only when flags are carried. The
+// caller keeps live-triangle counts itself (a flip between two real
+// triangles, all constrained_lawson makes, leaves them as they are).
 template <unsigned Carry, class InCircle = ExactIncircle>
 class RawTopology {
  public:
@@ -53,13 +58,14 @@ class RawTopology {
   HalfEdgeId twin(HalfEdgeId e) const { return a_.tw[e]; }
   const Point& point(VertexId v) const { return a_.pts[v]; }
   bool constrained(HalfEdgeId e) const {
-    if constexpr ((Carry & kCarryFlags) != 0) return (a_.flags[e] & kConstrained) != 0;
+    if constexpr ((Carry & kCarryFlags) != 0) return a_.flags != nullptr && (a_.flags[e] & kConstrained) != 0;
     return false;
   }
   double in_circle(const Point& a, const Point& b, const Point& c, const Point& d) const {
     return in_circle_(a, b, c, d);
   }
-  void flip(HalfEdgeId e) { flip_arrays<Carry>(a_, e); }
+  FlipQuad quad(HalfEdgeId e) const { return flip_quad(a_.tw, e); }
+  void flip(const FlipQuad& q) { flip_arrays<Carry>(a_, q); }
 
  private:
   MeshArrays a_;
@@ -94,16 +100,15 @@ inline LegalizeResult legalize_around_vertex(Topo& m, VertexId v, std::vector<Ha
     const HalfEdgeId e = stack.back();
     stack.pop_back();
     r.last = e;
-    if (m.constrained(e)) continue;
-    const HalfEdgeId f = m.twin(e);
-    if (f == kNone) continue;
-    const VertexId a = m.origin(e), b = m.origin(next_edge(e)), d = m.origin(prev_edge(f));
+    if (m.constrained(e) || m.twin(e) == kNone) continue;
+    const FlipQuad q = m.quad(e);
+    const VertexId a = m.origin(e), b = m.origin(q.e1), d = m.origin(q.f2);
     if (!breaks_edge(m, a, b, d, p)) continue;
     // (a, b, v) + (b, a, d) become (v, a, d) in e's slot and (d, b, v) in f's.
-    m.flip(e);
+    m.flip(q);
     ++r.flips;
-    stack.push_back(next_edge(e));  // a -> d
-    stack.push_back(f);             // d -> b
+    stack.push_back(q.e1);  // a -> d
+    stack.push_back(q.f);   // d -> b
   }
   return r;
 }
@@ -119,23 +124,26 @@ inline std::size_t constrained_lawson(Topo& m, std::vector<HalfEdgeId>& stack) {
   while (!stack.empty()) {
     const HalfEdgeId e = stack.back();
     stack.pop_back();
-    const HalfEdgeId f = m.twin(e);
-    if (f == kNone || m.constrained(e)) continue;
-    const VertexId a = m.origin(e), b = m.origin(next_edge(e)), c = m.origin(prev_edge(e)), d = m.origin(prev_edge(f));
+    if (m.twin(e) == kNone || m.constrained(e)) continue;
+    const FlipQuad q = m.quad(e);
+    const VertexId a = m.origin(e), b = m.origin(q.e1), c = m.origin(q.e2), d = m.origin(q.f2);
     // kInfinite (a ghost) and kNone (a dead slot) are the two largest ids.
     if (a >= kInfinite || b >= kInfinite || c >= kInfinite || d >= kInfinite) continue;
     // d strictly inside the circle of abc, across ab: the quadrilateral is
     // strictly convex, so the flip is valid.
     if (!(m.in_circle(m.point(a), m.point(b), m.point(c), m.point(d)) > 0)) continue;
-    m.flip(e);  // e's slot becomes (c, a, d), f's (d, b, c)
+    m.flip(q);  // e's slot becomes (c, a, d), f's (d, b, c)
     ++flips;
     stack.push_back(e);
-    stack.push_back(next_edge(e));
-    stack.push_back(f);
-    stack.push_back(next_edge(f));
+    stack.push_back(q.e1);
+    stack.push_back(q.f);
+    stack.push_back(q.f1);
   }
   return flips;
 }
+
+// The whole mesh for constrained_lawson(): every array carried, open twins.
+inline RawTopology<kCarryAll> lawson_topology(Mesh& m) { return RawTopology<kCarryAll>(MeshArrays::of(m)); }
 
 // Constrained Lawson flips over every edge of the mesh's real triangles
 // until the whole mesh is constrained Delaunay. Returns the number of flips.

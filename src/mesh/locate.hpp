@@ -38,22 +38,24 @@ inline TriId real_triangle_near(const VertexId* tv, const HalfEdgeId* tw, TriId 
   return t;
 }
 
-// Edge orders: fill cand with the half-edges of the triangle at `base` to
-// try, given the half-edge `from` the walk entered by (kNone at the start;
-// p is strictly beyond it, so it is never an exit). Return how many.
+// Edge orders: fill cand with the local indices (0..2) of the triangle's
+// edges to try, given the local index `from` of the edge the walk entered
+// by (kNoEntry at the start; p is strictly beyond it, so it is never an
+// exit). Return how many.
+inline constexpr unsigned kNoEntry = 3;
 
 // The fixed order: 0, 1, 2, then the two edges after the entry edge. Cannot
 // cycle in a Delaunay triangulation (Edelsbrunner 1990).
 struct FixedEdgeOrder {
-  int operator()(HalfEdgeId base, HalfEdgeId from, HalfEdgeId* cand) const {
-    if (from == kNone) {
-      cand[0] = base;
-      cand[1] = base + 1;
-      cand[2] = base + 2;
+  int operator()(unsigned from, unsigned* cand) const {
+    if (from == kNoEntry) {
+      cand[0] = 0;
+      cand[1] = 1;
+      cand[2] = 2;
       return 3;
     }
-    cand[0] = next_edge(from);
-    cand[1] = prev_edge(from);
+    cand[0] = kNextIndex[from];
+    cand[1] = kPrevIndex[from];
     return 2;
   }
 };
@@ -61,12 +63,12 @@ struct FixedEdgeOrder {
 // A random rotation of the three edges per triangle (the entry edge skipped).
 struct RandomRotationOrder {
   std::uint64_t state;
-  int operator()(HalfEdgeId base, HalfEdgeId from, HalfEdgeId* cand) {
+  int operator()(unsigned from, unsigned* cand) {
     const std::uint32_t r = walk_random(state) % 3;
     int n = 0;
     for (std::uint32_t k = 0; k < 3; ++k) {
-      const HalfEdgeId e = base + (r + k) % 3;
-      if (e != from) cand[n++] = e;
+      const unsigned i = (r + k) % 3;
+      if (i != from) cand[n++] = i;
     }
     return n;
   }
@@ -76,13 +78,13 @@ struct RandomRotationOrder {
 // after the entry edge; the generator's state lives with the caller.
 struct RandomPairOrder {
   std::uint64_t& state;
-  int operator()(HalfEdgeId base, HalfEdgeId from, HalfEdgeId* cand) {
+  int operator()(unsigned from, unsigned* cand) {
     const std::uint32_t r = walk_random(state);
-    if (from == kNone) {
-      for (std::uint32_t i = 0; i < 3; ++i) cand[i] = base + (r + i) % 3;
+    if (from == kNoEntry) {
+      for (std::uint32_t i = 0; i < 3; ++i) cand[i] = static_cast<std::uint32_t>(r + i) % 3;
       return 3;
     }
-    const HalfEdgeId e1 = next_edge(from), e2 = prev_edge(from);
+    const unsigned e1 = kNextIndex[from], e2 = kPrevIndex[from];
     cand[0] = (r & 1) ? e1 : e2;
     cand[1] = (r & 1) ? e2 : e1;
     return 2;
@@ -104,38 +106,39 @@ inline WalkResult visibility_walk(const VertexId* tv, const HalfEdgeId* tw, cons
                                   Order&& order, std::size_t max_steps = std::numeric_limits<std::size_t>::max() - 1) {
   WalkResult r;
   Location& loc = r.loc;
-  HalfEdgeId from = kNone;
+  unsigned from = kNoEntry;
   for (std::size_t steps = 0; steps <= max_steps; ++steps) {
     ++r.steps;
     const HalfEdgeId base = 3 * t;
-    HalfEdgeId cand[3];
-    const int nc = order(base, from, cand);
-    HalfEdgeId exit = kNone, zero = kNone;
+    const VertexId v[3] = {tv[base], tv[base + 1], tv[base + 2]};
+    unsigned cand[3];
+    const int nc = order(from, cand);
+    unsigned exit = kNoEntry, zero = kNoEntry;
     int zeros = 0;
-    for (int i = 0; i < nc; ++i) {
-      const HalfEdgeId e = cand[i];
-      const double o = orient2d(pts[tv[e]], pts[tv[next_edge(e)]], p);
+    for (int k = 0; k < nc; ++k) {
+      const unsigned i = cand[k];
+      const double o = orient2d(pts[v[i]], pts[v[kNextIndex[i]]], p);
       if (o < 0) {
-        exit = e;
+        exit = i;
         break;
       }
       if (o == 0) {
         ++zeros;
-        zero = e;
+        zero = i;
       }
     }
-    if (exit == kNone) {
+    if (exit == kNoEntry) {
       loc.tri = t;
       if (zeros == 0) {
         loc.kind = Location::Kind::InTriangle;
       } else if (zeros == 1) {
         loc.kind = Location::Kind::OnEdge;
-        loc.edge = zero;
+        loc.edge = base + zero;
       } else {  // two zero orientations: p is the vertex the two edges share
         loc.kind = Location::Kind::OnVertex;
         for (unsigned i = 0; i < 3 && loc.vertex == kNone; ++i)
-          if (pts[tv[base + i]] == p) {
-            loc.vertex = tv[base + i];
+          if (pts[v[i]] == p) {
+            loc.vertex = v[i];
             loc.edge = base + i;
           }
         if (loc.vertex == kNone)
@@ -143,21 +146,21 @@ inline WalkResult visibility_walk(const VertexId* tv, const HalfEdgeId* tw, cons
       }
       return r;
     }
-    const HalfEdgeId across = tw[exit];
+    const HalfEdgeId across = tw[base + exit];
     if (across == kNone) {  // compacted mesh: p is outside the domain here
       loc.kind = Location::Kind::Outside;
       loc.tri = t;
-      loc.edge = exit;
+      loc.edge = base + exit;
       return r;
     }
-    if (tv[prev_edge(across)] == kInfinite) {  // entered by a real edge: a ghost's apex is at infinity
+    t = tri_of(across);
+    from = across - 3 * t;
+    if (tv[3 * t + kPrevIndex[from]] == kInfinite) {  // entered by a real edge: a ghost's apex is at infinity
       loc.kind = Location::Kind::Outside;
-      loc.tri = tri_of(across);
+      loc.tri = t;
       loc.edge = across;
       return r;
     }
-    from = across;
-    t = tri_of(across);
   }
   loc.kind = Location::Kind::Outside;
   loc.tri = kNone;
