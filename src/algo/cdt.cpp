@@ -40,6 +40,21 @@ namespace detail {
 
 namespace {
 
+// The bounding box of a non-empty point list.
+struct Box {
+  double x0, x1, y0, y1;
+};
+Box bounding_box(const std::vector<Point>& pts) {
+  Box b{pts[0].x, pts[0].x, pts[0].y, pts[0].y};
+  for (const Point& q : pts) {
+    b.x0 = std::min(b.x0, q.x);
+    b.x1 = std::max(b.x1, q.x);
+    b.y0 = std::min(b.y0, q.y);
+    b.y1 = std::max(b.y1, q.y);
+  }
+  return b;
+}
+
 std::uint64_t saturating_pairs(std::uint64_t s) {
   if (s > (std::uint64_t{1} << 31)) return std::uint64_t{1} << 62;
   return s * (s > 0 ? s - 1 : 0) / 2;
@@ -72,14 +87,8 @@ CdtBuilder::CdtBuilder(Mesh& mesh, const Pslg& pslg, const CdtOptions& options, 
   // The static incircle filter's bound (incircle_fast): differences of
   // coordinates within the bounding box (crossing vertices lie inside it).
   if (!pslg.points.empty()) {
-    double x0 = pslg.points[0].x, x1 = x0, y0 = pslg.points[0].y, y1 = y0;
-    for (const Point& q : pslg.points) {
-      x0 = std::min(x0, q.x);
-      x1 = std::max(x1, q.x);
-      y0 = std::min(y0, q.y);
-      y1 = std::max(y1, q.y);
-    }
-    const double box = std::max(x1 - x0, y1 - y0) * (1.0 + 1e-12);
+    const Box bb = bounding_box(pslg.points);
+    const double box = std::max(bb.x1 - bb.x0, bb.y1 - bb.y0) * (1.0 + 1e-12);
     const double box2 = box * box;
     // Beyond the range where a fourth power stays finite and normal, the
     // bound is useless: leave it infinite, so incircle() always decides.
@@ -375,14 +384,8 @@ double seconds_since(Clock::time_point t0) { return std::chrono::duration<double
 // the classic order is up to three times faster).
 bool long_segments(const Pslg& pslg) {
   if (pslg.segments.empty() || pslg.points.size() < 3) return false;
-  double x0 = pslg.points[0].x, x1 = x0, y0 = pslg.points[0].y, y1 = y0;
-  for (const Point& p : pslg.points) {
-    x0 = std::min(x0, p.x);
-    x1 = std::max(x1, p.x);
-    y0 = std::min(y0, p.y);
-    y1 = std::max(y1, p.y);
-  }
-  const double area = (x1 - x0) * (y1 - y0);
+  const detail::Box bb = detail::bounding_box(pslg.points);
+  const double area = (bb.x1 - bb.x0) * (bb.y1 - bb.y0);
   if (!(area > 0) || !std::isfinite(area)) return false;
   // The mean length over a sample of (at most about 4096) segments.
   const std::size_t stride = pslg.segments.size() / 4096 + 1;

@@ -2,6 +2,7 @@
 // shared front end (tracing a segment, splitting it at vertices on it and at
 // crossings with earlier segments) and the seed's recovery methods.
 #pragma once
+#include <algorithm>
 #include <cstdint>
 #include <deque>
 #include <unordered_set>
@@ -139,6 +140,18 @@ class CdtBuilder {
   std::vector<HalfEdgeId> cut_edges_;
   std::vector<std::uint32_t> vstamp_, vpos_;
   std::uint32_t vstamp_now_ = 0;
+  // A fresh stamp for vstamp_ (sized to the vertices; cleared on wrap-around).
+  std::uint32_t new_vertex_stamp() {
+    if (vstamp_.size() < pts_.size()) {
+      vstamp_.resize(pts_.size(), 0);
+      vpos_.resize(pts_.size(), 0);
+    }
+    if (++vstamp_now_ == 0) {
+      std::fill(vstamp_.begin(), vstamp_.end(), 0);
+      vstamp_now_ = 1;
+    }
+    return vstamp_now_;
+  }
   struct Job {
     std::uint32_t lo, hi;
     HalfEdgeId parent;
@@ -160,6 +173,14 @@ class CdtBuilder {
   std::vector<HeapEntry> heap_;
   std::vector<std::uint32_t> cavity_stamp_;  // per triangle slot: == stamp_ when in the current cavity
   std::uint32_t stamp_ = 0;
+  // A fresh stamp_ for cavity_stamp_ (sized to the slots; cleared on wrap-around).
+  void new_cavity_stamp() {
+    if (cavity_stamp_.size() < mesh_.num_triangle_slots()) cavity_stamp_.resize(mesh_.num_triangle_slots(), 0);
+    if (++stamp_ == 0) {
+      std::fill(cavity_stamp_.begin(), cavity_stamp_.end(), 0);
+      stamp_ = 1;
+    }
+  }
 };
 
 // The Fast method's first attempt (cdt_chain.cpp): vertices inserted along

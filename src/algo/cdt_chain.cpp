@@ -22,6 +22,7 @@
 #include "deltamesh/predicates.hpp"
 #include "mesh/legalize.hpp"
 #include "mesh/locate.hpp"
+#include "mesh/split.hpp"
 
 namespace deltamesh::detail {
 
@@ -156,62 +157,26 @@ void CdtBuilder::release_slots() {
 // DelaunayInserter, on the raw arrays (this loop is the chain order's cost).
 void CdtBuilder::split_and_legalize(TriId t, VertexId v) {
   // Raw pointers: nothing here reallocates the arrays.
-  VertexId* const tv_ = this->tv_.data();
-  HalfEdgeId* const tw_ = this->tw_.data();
-  std::uint8_t* const flags_ = this->flags_.data();
-  int* const seg_of_ = this->seg_of_.data();
-  HalfEdgeId* const ve_ = this->ve_.data();
-  const Point* const pts_ = this->pts_.data();
-  const HalfEdgeId e0 = 3 * t, e1 = e0 + 1, e2 = e0 + 2;
-  const VertexId a = tv_[e0], b = tv_[e1], c = tv_[e2];
-  const HalfEdgeId tw_bc = tw_[e1], tw_ca = tw_[e2];
-  const TriId t1 = static_cast<TriId>(next_slot_++), t2 = static_cast<TriId>(next_slot_++);
-  const HalfEdgeId g0 = 3 * t1, h0 = 3 * t2;
-  tv_[g0] = b;
-  tv_[g0 + 1] = c;
-  tv_[g0 + 2] = v;
-  tv_[h0] = c;
-  tv_[h0 + 1] = a;
-  tv_[h0 + 2] = v;
-  tv_[e2] = v;
-  tw_[g0] = tw_bc;
-  tw_[tw_bc] = g0;
-  tw_[h0] = tw_ca;
-  tw_[tw_ca] = h0;
-  tw_[e1] = g0 + 2;
-  tw_[g0 + 2] = e1;
-  tw_[g0 + 1] = h0 + 2;
-  tw_[h0 + 2] = g0 + 1;
-  tw_[h0 + 1] = e2;
-  tw_[e2] = h0 + 1;
-  flags_[g0] = flags_[e1];
-  flags_[h0] = flags_[e2];
-  flags_[e1] = flags_[e2] = flags_[g0 + 1] = flags_[g0 + 2] = flags_[h0 + 1] = flags_[h0 + 2] = 0;
-  if (ids_) {
-    seg_of_[g0] = seg_of_[e1];
-    seg_of_[h0] = seg_of_[e2];
-    seg_of_[e1] = seg_of_[e2] = seg_of_[g0 + 1] = seg_of_[g0 + 2] = seg_of_[h0 + 1] = seg_of_[h0 + 2] = 0;
-  }
-  if (b != kInfinite && ve_[b] == e1) ve_[b] = g0;
-  if (c != kInfinite && ve_[c] == e2) ve_[c] = h0;
-  ve_[v] = e2;
-
-  // Lawson flips that keep constrained edges, on the raw arrays.
   MeshArrays arrays;
-  arrays.tv = tv_;
-  arrays.tw = tw_;
-  arrays.flags = flags_;
-  arrays.markers = ids_ ? seg_of_ : nullptr;
-  arrays.out = ve_;
-  arrays.pts = pts_;
+  arrays.tv = tv_.data();
+  arrays.tw = tw_.data();
+  arrays.flags = flags_.data();
+  arrays.markers = ids_ ? seg_of_.data() : nullptr;
+  arrays.out = ve_.data();
+  arrays.pts = pts_.data();
+  constexpr unsigned kCarry = kCarryFlags | kCarryMarkers | kCarryOutEdges;
+  const TriId t1 = static_cast<TriId>(next_slot_), t2 = t1 + 1;
+  next_slot_ += 2;
+  split_triangle_arrays<kCarry>(arrays, t, v, t1, t2);
+  // Lawson flips that keep constrained edges, with the static incircle filter.
   const auto in_circle = [this](const Point& pa, const Point& pb, const Point& pc, const Point& pd) {
     return incircle_fast(pa, pb, pc, pd);
   };
-  RawTopology<kCarryFlags | kCarryMarkers | kCarryOutEdges, decltype(in_circle)> topo(arrays, in_circle);
+  RawTopology<kCarry, decltype(in_circle)> topo(arrays, in_circle);
   legal_.clear();
-  legal_.push_back(e0);
-  legal_.push_back(g0);
-  legal_.push_back(h0);
+  legal_.push_back(3 * t);
+  legal_.push_back(3 * t1);
+  legal_.push_back(3 * t2);
   lean_flips_ += legalize_around_vertex(topo, v, legal_).flips;
 }
 
@@ -256,17 +221,7 @@ bool chain_order_cdt(Mesh& mesh, const Pslg& pslg, const CdtOptions& options, Cd
   mesh.edge_markers_mut().reserve(6 * n + 6);
   VertexId v0 = order[0], v1 = order[i1], v2 = order[i2];
   if (orient2d(pts[v0], pts[v1], pts[v2]) < 0) std::swap(v1, v2);
-  {
-    const TriId t = mesh.add_triangle(v0, v1, v2);
-    const VertexId v[3] = {v0, v1, v2};
-    TriId g[3];
-    for (int i = 0; i < 3; ++i) g[i] = mesh.add_triangle(v[(i + 1) % 3], v[i], kInfinite);
-    for (int i = 0; i < 3; ++i) {
-      mesh.link(3 * t + i, 3 * g[i]);
-      mesh.link(3 * g[i] + 1, 3 * g[(i + 2) % 3] + 2);
-      mesh.set_out_edge(v[i], 3 * t + i);
-    }
-  }
+  make_first_triangle(mesh, v0, v1, v2);
   mesh.recount();
 
   first_copy.assign(n, kNone);

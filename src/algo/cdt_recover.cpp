@@ -71,15 +71,7 @@ void CdtBuilder::recover(VertexId a, VertexId b, std::uint32_t seg) {
 // work on any cavity (counted in method_fallbacks).
 
 bool CdtBuilder::cut_excursions(std::vector<VertexId>& chain, std::vector<HalfEdgeId>& out) {
-  if (vstamp_.size() < pts_.size()) {
-    vstamp_.resize(pts_.size(), 0);
-    vpos_.resize(pts_.size(), 0);
-  }
-  if (++vstamp_now_ == 0) {
-    std::fill(vstamp_.begin(), vstamp_.end(), 0);
-    vstamp_now_ = 1;
-  }
-  const std::uint32_t live = vstamp_now_;
+  const std::uint32_t live = new_vertex_stamp();
   std::size_t top = 0;  // chain[0..top] is the reduced chain, out[0..top) its edges
   vstamp_[chain[0]] = live;
   vpos_[chain[0]] = 0;
@@ -150,19 +142,12 @@ void CdtBuilder::recover_fast(VertexId a, [[maybe_unused]] VertexId b, std::uint
   std::reverse(right_out_.begin(), right_out_.end());
 
   // An enclosed vertex or triangle shows as a vertex met twice on a chain.
-  if (vstamp_.size() < pts_.size()) {
-    vstamp_.resize(pts_.size(), 0);
-    vpos_.resize(pts_.size(), 0);
-  }
   bool repeats = false;
   for (const std::vector<VertexId>* chain : {&left_, &right_}) {
-    if (++vstamp_now_ == 0) {
-      std::fill(vstamp_.begin(), vstamp_.end(), 0);
-      vstamp_now_ = 1;
-    }
+    const std::uint32_t now = new_vertex_stamp();
     for (VertexId v : *chain) {
-      repeats = repeats || vstamp_[v] == vstamp_now_;
-      vstamp_[v] = vstamp_now_;
+      repeats = repeats || vstamp_[v] == now;
+      vstamp_[v] = now;
     }
   }
   cut_vertices_.clear();
@@ -172,11 +157,7 @@ void CdtBuilder::recover_fast(VertexId a, [[maybe_unused]] VertexId b, std::uint
       fast_gave_up(a, b, seg);  // a chain that is no walk out and back: a cavity with holes
       return;
     }
-    if (cavity_stamp_.size() < mesh_.num_triangle_slots()) cavity_stamp_.resize(mesh_.num_triangle_slots(), 0);
-    if (++stamp_ == 0) {
-      std::fill(cavity_stamp_.begin(), cavity_stamp_.end(), 0);
-      stamp_ = 1;
-    }
+    new_cavity_stamp();
     for (TriId t : slots_) cavity_stamp_[t] = stamp_;
     for (HalfEdgeId o : cut_edges_) {
       if (cavity_stamp_[tri_of(o)] != stamp_) {  // an edge cut out with the outside behind it
@@ -363,11 +344,7 @@ void CdtBuilder::lawson_flips(std::vector<HalfEdgeId>& stack) {
 void CdtBuilder::recover_lifting(VertexId a, VertexId b, std::uint32_t seg) {
   const Point pa = pt(a), pb = pt(b);
   // The cavity: the triangles crossed by ab (flips keep slots).
-  if (cavity_stamp_.size() < mesh_.num_triangle_slots()) cavity_stamp_.resize(mesh_.num_triangle_slots(), 0);
-  if (++stamp_ == 0) {
-    std::fill(cavity_stamp_.begin(), cavity_stamp_.end(), 0);
-    stamp_ = 1;
-  }
+  new_cavity_stamp();
   lawson_stack_.clear();
   auto add_slot = [&](TriId t) {
     cavity_stamp_[t] = stamp_;
@@ -404,15 +381,7 @@ void CdtBuilder::recover_lifting(VertexId a, VertexId b, std::uint32_t seg) {
   }
 
   // Side of ab of each vertex, computed once per piece.
-  if (vstamp_.size() < pts_.size()) {
-    vstamp_.resize(pts_.size(), 0);
-    vpos_.resize(pts_.size(), 0);
-  }
-  if (++vstamp_now_ == 0) {
-    std::fill(vstamp_.begin(), vstamp_.end(), 0);
-    vstamp_now_ = 1;
-  }
-  const std::uint32_t sides = vstamp_now_;
+  const std::uint32_t sides = new_vertex_stamp();
   auto side = [&](VertexId v) -> int {
     if (vstamp_[v] != sides) {
       const double o = orient2d(pa, pb, pt(v));

@@ -14,6 +14,7 @@
 #include "deltamesh/predicates.hpp"
 #include "mesh/legalize.hpp"
 #include "mesh/locate.hpp"
+#include "mesh/split.hpp"
 
 namespace deltamesh {
 
@@ -24,22 +25,6 @@ using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
 }
-
-// Real triangle (a, b, c) counter-clockwise plus its three ghosts, linked.
-void make_first_triangle(Mesh& mesh, VertexId a, VertexId b, VertexId c) {
-  const TriId t = mesh.add_triangle(a, b, c);
-  const VertexId v[3] = {a, b, c};
-  TriId g[3];
-  for (int i = 0; i < 3; ++i) g[i] = mesh.add_triangle(v[(i + 1) % 3], v[i], kInfinite);
-  for (int i = 0; i < 3; ++i) {
-    mesh.link(3 * t + i, 3 * g[i]);
-    // Ghost g[i] = (v[i+1], v[i], inf): its edge v[i] -> inf meets ghost
-    // g[i-1] = (v[i], v[i-1], inf) at its edge inf -> v[i].
-    mesh.link(3 * g[i] + 1, 3 * g[(i + 2) % 3] + 2);
-    mesh.set_out_edge(v[i], 3 * t + i);
-  }
-}
-
 
 // The bulk builder: split + Lawson flips (mesh/legalize.hpp) on raw arrays
 // sized once, without per-vertex out-edges (compact() rebuilds them), because
@@ -79,11 +64,7 @@ class BulkBuilder {
         split(loc.tri, v);
         break;
     }
-    detail::MeshArrays arrays;
-    arrays.tv = v_;
-    arrays.tw = tw_;
-    arrays.pts = p_;
-    detail::RawTopology<detail::kCarryTopologyOnly> topo(arrays);
+    detail::RawTopology<detail::kCarryTopologyOnly> topo(arrays());
     const HalfEdgeId last = detail::legalize_around_vertex(topo, v, stack_).last;
     hint = detail::real_triangle_near(v_, tw_, tri_of(last));
     return v;
@@ -92,71 +73,36 @@ class BulkBuilder {
  private:
   void push(HalfEdgeId e) { stack_.push_back(e); }
 
-  // Triangle t = (a, b, c) becomes (a, b, v) + new (b, c, v) + new (c, a, v).
+  detail::MeshArrays arrays() const {
+    detail::MeshArrays a;
+    a.tv = v_;
+    a.tw = tw_;
+    a.pts = p_;
+    return a;
+  }
+
+  // Triangle t = (a, b, c) becomes (a, b, v) + new (b, c, v) + new (c, a, v);
+  // the edges opposite v go on the stack.
   void split(TriId t, VertexId v) {
-    const HalfEdgeId e0 = 3 * t, e1 = e0 + 1, e2 = e0 + 2;
-    const VertexId a = v_[e0], b = v_[e1], c = v_[e2];
-    const HalfEdgeId tw_bc = tw_[e1], tw_ca = tw_[e2];
-    const HalfEdgeId g0 = static_cast<HalfEdgeId>(used_), h0 = g0 + 3;
+    const TriId t1 = static_cast<TriId>(used_ / 3);
     used_ += 6;
-    v_[g0] = b;
-    v_[g0 + 1] = c;
-    v_[g0 + 2] = v;
-    v_[h0] = c;
-    v_[h0 + 1] = a;
-    v_[h0 + 2] = v;
-    tw_[g0] = tw_bc;
-    tw_[g0 + 1] = h0 + 2;
-    tw_[g0 + 2] = e1;
-    tw_[h0] = tw_ca;
-    tw_[h0 + 1] = e2;
-    tw_[h0 + 2] = g0 + 1;
-    tw_[tw_bc] = g0;
-    tw_[tw_ca] = h0;
-    v_[e2] = v;
-    tw_[e1] = g0 + 2;
-    tw_[e2] = h0 + 1;
-    push(e0);
-    push(g0);
-    push(h0);
+    detail::split_triangle_arrays<detail::kCarryTopologyOnly>(arrays(), t, v, t1, t1 + 1);
+    push(3 * t);
+    push(3 * t1);
+    push(3 * t1 + 3);
   }
 
   // Edge e = (a, b) between (a, b, c) and (b, a, d) is split at v into
   // (a, v, c), new (v, b, c), (b, v, d), new (v, a, d).
   void split_edge(HalfEdgeId e, VertexId v) {
-    const unsigned ie = e % 3;
-    const HalfEdgeId e1 = e - ie + detail::kNextIndex[ie], e2 = e - ie + detail::kPrevIndex[ie];
     const HalfEdgeId f = tw_[e];
-    const unsigned jf = f % 3;
-    const HalfEdgeId f1 = f - jf + detail::kNextIndex[jf], f2 = f - jf + detail::kPrevIndex[jf];
-    const VertexId a = v_[e], b = v_[e1], c = v_[e2], d = v_[f2];
-    const HalfEdgeId tw_bc = tw_[e1], tw_ad = tw_[f1];
-    const HalfEdgeId g0 = static_cast<HalfEdgeId>(used_), h0 = g0 + 3;
+    const TriId t3 = static_cast<TriId>(used_ / 3);
     used_ += 6;
-    v_[g0] = v;
-    v_[g0 + 1] = b;
-    v_[g0 + 2] = c;
-    v_[h0] = v;
-    v_[h0 + 1] = a;
-    v_[h0 + 2] = d;
-    v_[e1] = v;
-    v_[f1] = v;
-    tw_[g0] = f;
-    tw_[f] = g0;
-    tw_[g0 + 1] = tw_bc;
-    tw_[tw_bc] = g0 + 1;
-    tw_[g0 + 2] = e1;
-    tw_[e1] = g0 + 2;
-    tw_[h0] = e;
-    tw_[e] = h0;
-    tw_[h0 + 1] = tw_ad;
-    tw_[tw_ad] = h0 + 1;
-    tw_[h0 + 2] = f1;
-    tw_[f1] = h0 + 2;
-    push(e2);
+    const HalfEdgeId g0 = detail::split_edge_arrays<detail::kCarryTopologyOnly>(arrays(), e, v, t3, t3 + 1);
+    push(prev_edge(e));
     push(g0 + 1);
-    push(f2);
-    push(h0 + 1);
+    push(prev_edge(f));
+    push(g0 + 4);
   }
 
   Mesh& mesh_;
@@ -197,9 +143,9 @@ Mesh delaunay(std::span<const Point> points, const DelaunayOptions& options, Del
   }
   mesh.reserve(n, 2 * n + 2);
   if (orient2d(pts[0], pts[i1], pts[i2]) > 0)
-    make_first_triangle(mesh, 0, static_cast<VertexId>(i1), static_cast<VertexId>(i2));
+    detail::make_first_triangle(mesh, 0, static_cast<VertexId>(i1), static_cast<VertexId>(i2));
   else
-    make_first_triangle(mesh, 0, static_cast<VertexId>(i2), static_cast<VertexId>(i1));
+    detail::make_first_triangle(mesh, 0, static_cast<VertexId>(i2), static_cast<VertexId>(i1));
 
   // (duplicate, the vertex it met) in insertion order.
   std::vector<std::pair<VertexId, VertexId>> dups;

@@ -22,20 +22,8 @@ class DelaunayInserter {
   // Inserts vertex v, already in mesh.points() but in no triangle.
   Result insert_existing(VertexId v, TriId hint) {
     const Location loc = mesh_.locate(mesh_.point(v), hint);
-    switch (loc.kind) {
-      case Location::Kind::OnVertex:
-        return {loc.vertex, loc.tri};
-      case Location::Kind::OnEdge:
-        insert_on_edge(loc.edge, v);
-        break;
-      case Location::Kind::InTriangle:
-      case Location::Kind::Outside:
-        if (loc.tri == kNone) return {kNone, kNone};
-        insert_in_triangle(loc.tri, v);
-        break;
-    }
-    legalize(v);
-    return {v, tri_of(mesh_.out_edge(v))};
+    if (loc.kind != Location::Kind::OnVertex && loc.tri == kNone) return {kNone, kNone};
+    return insert_located(loc, v);
   }
 
   // Inserts vertex v (in mesh.points() but in no triangle) by splitting the

@@ -22,6 +22,8 @@ struct MeshArrays {
   HalfEdgeId* out = nullptr;        // one outgoing half-edge per vertex
   const Point* pts = nullptr;
 
+  // The arrays of m (optional ones null while empty); valid until m's
+  // arrays reallocate.
   static MeshArrays of(Mesh& m) {
     MeshArrays a;
     a.tv = m.tri_v_mut().data();
@@ -92,28 +94,19 @@ inline HalfEdgeId flip_arrays(const MeshArrays& m, const FlipQuad& q) {
   relink(f1, tw_bc);
   tw[e2] = f2;
   tw[f2] = e2;
-  if constexpr ((Carry & kCarryFlags) != 0) {
-    if (std::uint8_t* const fl = m.flags) {
-      const std::uint8_t fl_bc = fl[e1], fl_ca = fl[e2], fl_ad = fl[f1], fl_db = fl[f2];
-      fl[e0] = fl_ca;
-      fl[e1] = fl_ad;
-      fl[e2] = 0;
-      fl[f0] = fl_db;
-      fl[f1] = fl_bc;
-      fl[f2] = 0;
-    }
-  }
-  if constexpr ((Carry & kCarryMarkers) != 0) {
-    if (int* const mk = m.markers) {
-      const int m_bc = mk[e1], m_ca = mk[e2], m_ad = mk[f1], m_db = mk[f2];
-      mk[e0] = m_ca;
-      mk[e1] = m_ad;
-      mk[e2] = 0;
-      mk[f0] = m_db;
-      mk[f1] = m_bc;
-      mk[f2] = 0;
-    }
-  }
+  auto carry = [&](auto* data) {  // the outer edges' data moves with them; cd gets none
+    const auto bc = data[e1], ca = data[e2], ad = data[f1], db = data[f2];
+    data[e0] = ca;
+    data[e1] = ad;
+    data[e2] = 0;
+    data[f0] = db;
+    data[f1] = bc;
+    data[f2] = 0;
+  };
+  if constexpr ((Carry & kCarryFlags) != 0)
+    if (m.flags) carry(m.flags);
+  if constexpr ((Carry & kCarryMarkers) != 0)
+    if (m.markers) carry(m.markers);
   if constexpr ((Carry & kCarryOutEdges) != 0) {
     // Each vertex's out-edge keeps pointing at an edge that plays its role.
     HalfEdgeId* const ve = m.out;

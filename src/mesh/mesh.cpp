@@ -6,8 +6,17 @@
 #include "deltamesh/predicates.hpp"
 #include "mesh/flip.hpp"
 #include "mesh/locate.hpp"
+#include "mesh/split.hpp"
 
 namespace deltamesh {
+
+namespace {
+// x's twin becomes y, and y's x when y exists.
+void relink(std::vector<HalfEdgeId>& twin, HalfEdgeId x, HalfEdgeId y) {
+  twin[x] = y;
+  if (y != kNone) twin[y] = x;
+}
+}  // namespace
 
 HalfEdgeId Mesh::find_edge(VertexId a, VertexId b) const {
   HalfEdgeId found = kNone;
@@ -101,122 +110,43 @@ HalfEdgeId Mesh::flip(HalfEdgeId e) {
   const TriId t1 = tri_of(e), t2 = tri_of(twin_[e]);
   note_removed(t1);
   note_removed(t2);
-  detail::MeshArrays a;
-  a.tv = tri_v_.data();
-  a.tw = twin_.data();
-  a.flags = edge_flags_.empty() ? nullptr : edge_flags_.data();
-  a.markers = edge_markers_.empty() ? nullptr : edge_markers_.data();
-  a.out = vert_edge_.data();
-  const HalfEdgeId cd = detail::flip_arrays<detail::kCarryAll>(a, e);
+  const HalfEdgeId cd = detail::flip_arrays<detail::kCarryAll>(detail::MeshArrays::of(*this), e);
   note_added(t1);
   note_added(t2);
   return cd;
 }
 
 HalfEdgeId Mesh::split_triangle(TriId t, VertexId p) {
-  const HalfEdgeId e0 = 3 * t, e1 = e0 + 1, e2 = e0 + 2;
-  const VertexId a = tri_v_[e0], b = tri_v_[e1], c = tri_v_[e2];
-  const HalfEdgeId tw_bc = twin_[e1], tw_ca = twin_[e2];
-  const std::uint8_t fl_bc = edge_flags(e1), fl_ca = edge_flags(e2);
-  const int m_bc = edge_marker(e1), m_ca = edge_marker(e2);
+  const VertexId a = tri_v_[3 * t], b = tri_v_[3 * t + 1], c = tri_v_[3 * t + 2];
   note_removed(t);
-  const TriId t1 = add_triangle(b, c, p);
+  const TriId t1 = add_triangle(b, c, p);  // (counted with their final corners)
   const TriId t2 = add_triangle(c, a, p);
-  tri_v_[e2] = p;  // t becomes (a, b, p)
+  const HalfEdgeId r = detail::split_triangle_arrays<detail::kCarryAll>(detail::MeshArrays::of(*this), t, p, t1, t2);
   note_added(t);
-  const HalfEdgeId g0 = 3 * t1, h0 = 3 * t2;
-  auto relink = [&](HalfEdgeId x, HalfEdgeId y) {
-    twin_[x] = y;
-    if (y != kNone) twin_[y] = x;
-  };
-  relink(g0, tw_bc);
-  relink(h0, tw_ca);
-  link(e1, g0 + 2);
-  link(g0 + 1, h0 + 2);
-  link(h0 + 1, e2);
-  if (!edge_flags_.empty()) {
-    edge_flags_[g0] = fl_bc;
-    edge_flags_[h0] = fl_ca;
-    edge_flags_[e1] = edge_flags_[e2] = 0;
-  }
-  if (!edge_markers_.empty()) {
-    edge_markers_[g0] = m_bc;
-    edge_markers_[h0] = m_ca;
-    edge_markers_[e1] = edge_markers_[e2] = 0;
-  }
   copy_triangle_data(t, t1);
   copy_triangle_data(t, t2);
-  if (b != kInfinite && vert_edge_[b] == e1) vert_edge_[b] = g0;
-  if (c != kInfinite && vert_edge_[c] == e2) vert_edge_[c] = h0;
-  if (p != kInfinite) vert_edge_[p] = e2;
-  return e2;
+  return r;
 }
 
 HalfEdgeId Mesh::split_edge(HalfEdgeId e, VertexId p) {
   const HalfEdgeId f = twin_[e];
-  const HalfEdgeId e0 = e, e1 = next_edge(e), e2 = prev_edge(e);
-  const VertexId a = tri_v_[e0], b = tri_v_[e1], c = tri_v_[e2];
-  const HalfEdgeId tw_bc = twin_[e1];
-  const std::uint8_t fl_e = edge_flags(e0), fl_bc = edge_flags(e1);
-  const int m_e = edge_marker(e0), m_bc = edge_marker(e1);
   const TriId t1 = tri_of(e);
+  const VertexId a = tri_v_[e], b = tri_v_[next_edge(e)], c = tri_v_[prev_edge(e)];
   note_removed(t1);
-  // (a, b, c) becomes (a, p, c) + new (p, b, c).
-  tri_v_[e1] = p;
-  note_added(t1);
   const TriId t3 = add_triangle(p, b, c);
-  const HalfEdgeId g0 = 3 * t3;
-  twin_[g0 + 1] = tw_bc;
-  if (tw_bc != kNone) twin_[tw_bc] = g0 + 1;
-  link(e1, g0 + 2);
+  TriId t2 = kNone, t4 = kNone;
+  if (f != kNone) {
+    t2 = tri_of(f);
+    note_removed(t2);
+    t4 = add_triangle(p, a, tri_v_[prev_edge(f)]);
+  }
+  const HalfEdgeId g0 = detail::split_edge_arrays<detail::kCarryAll>(detail::MeshArrays::of(*this), e, p, t3, t4);
+  note_added(t1);
   copy_triangle_data(t1, t3);
-  if (!edge_flags_.empty()) {
-    edge_flags_[g0] = fl_e;
-    edge_flags_[g0 + 1] = fl_bc;
-    edge_flags_[e1] = edge_flags_[g0 + 2] = 0;
+  if (f != kNone) {
+    note_added(t2);
+    copy_triangle_data(t2, t4);
   }
-  if (!edge_markers_.empty()) {
-    edge_markers_[g0] = m_e;
-    edge_markers_[g0 + 1] = m_bc;
-    edge_markers_[e1] = edge_markers_[g0 + 2] = 0;
-  }
-  if (b != kInfinite && vert_edge_[b] == e1) vert_edge_[b] = g0 + 1;
-  if (p != kInfinite) vert_edge_[p] = g0;
-  if (f == kNone) {
-    twin_[e0] = kNone;
-    twin_[g0] = kNone;
-    return g0;
-  }
-  // Other side (b, a, d) becomes (b, p, d) + new (p, a, d).
-  const HalfEdgeId f0 = f, f1 = next_edge(f);
-  const HalfEdgeId tw_ad = twin_[f1];
-  const std::uint8_t fl_f = edge_flags(f0), fl_ad = edge_flags(f1);
-  const int m_f = edge_marker(f0), m_ad = edge_marker(f1);
-  const VertexId d = tri_v_[prev_edge(f)];
-  const TriId t2 = tri_of(f);
-  note_removed(t2);
-  tri_v_[f1] = p;
-  note_added(t2);
-  const TriId t4 = add_triangle(p, a, d);
-  const HalfEdgeId h0 = 3 * t4;
-  twin_[h0 + 1] = tw_ad;
-  if (tw_ad != kNone) twin_[tw_ad] = h0 + 1;
-  link(f1, h0 + 2);
-  copy_triangle_data(t2, t4);
-  link(e0, h0);
-  link(g0, f0);
-  if (!edge_flags_.empty()) {
-    edge_flags_[h0] = fl_f;
-    edge_flags_[h0 + 1] = fl_ad;
-    edge_flags_[f1] = edge_flags_[h0 + 2] = 0;
-  }
-  if (!edge_markers_.empty()) {
-    edge_markers_[h0] = m_f;
-    edge_markers_[h0 + 1] = m_ad;
-    edge_markers_[f1] = edge_markers_[h0 + 2] = 0;
-  }
-  if (a != kInfinite && vert_edge_[a] == f1) vert_edge_[a] = h0 + 1;
-  (void)d;
   return g0;
 }
 
@@ -237,12 +167,8 @@ void Mesh::remove_degree3_vertex(VertexId v) {
   note_removed(t0);
   tri_v_[e0] = c;  // (c, a, b)
   note_added(t0);
-  auto relink = [&](HalfEdgeId x, HalfEdgeId y) {
-    twin_[x] = y;
-    if (y != kNone) twin_[y] = x;
-  };
-  relink(e0, tw_ca);
-  relink(e2, tw_bc);
+  relink(twin_, e0, tw_ca);
+  relink(twin_, e2, tw_bc);
   if (!edge_flags_.empty()) {
     edge_flags_[e0] = fl_ca;
     edge_flags_[e2] = fl_bc;
@@ -284,17 +210,13 @@ void Mesh::unsplit_edge(HalfEdgeId g) {
     fl_ad = edge_flags(k2);
     m_ad = edge_marker(k2);
   }
-  auto relink = [&](HalfEdgeId x, HalfEdgeId y) {
-    twin_[x] = y;
-    if (y != kNone) twin_[y] = x;
-  };
   remove_triangle(tri_of(g));
   if (f != kNone) remove_triangle(tri_of(k0));
   const TriId t1 = tri_of(h0);
   note_removed(t1);
   tri_v_[h0] = b;  // (b, c, a)
   note_added(t1);
-  relink(h0, tw_bc);
+  relink(twin_, h0, tw_bc);
   if (!edge_flags_.empty()) edge_flags_[h0] = fl_bc;
   if (!edge_markers_.empty()) edge_markers_[h0] = m_bc;
   twin_[h2] = kNone;
@@ -303,7 +225,7 @@ void Mesh::unsplit_edge(HalfEdgeId g) {
     note_removed(t3);
     tri_v_[f1] = a;  // (b, a, d)
     note_added(t3);
-    relink(f1, tw_ad);
+    relink(twin_, f1, tw_ad);
     if (!edge_flags_.empty()) edge_flags_[f1] = fl_ad;
     if (!edge_markers_.empty()) edge_markers_[f1] = m_ad;
     link(h2, f);
