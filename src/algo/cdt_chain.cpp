@@ -153,8 +153,9 @@ void CdtBuilder::release_slots() {
 
 // Triangle t = (a, b, c), or a ghost, split at v into (a, b, v) in t and
 // (b, c, v), (c, a, v) in two reserved slots; then Lawson flips that keep
-// constrained edges. The same steps as Mesh::split_triangle and
-// DelaunayInserter, on the raw arrays (this loop is the chain order's cost).
+// constrained edges. The mesh kernels DelaunayInserter uses, inlined on the
+// raw arrays without the Mesh's bookkeeping (this loop is the chain order's
+// cost; release_slots() recounts).
 void CdtBuilder::split_and_legalize(TriId t, VertexId v) {
   // Raw pointers: nothing here reallocates the arrays.
   MeshArrays arrays;
