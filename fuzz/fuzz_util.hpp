@@ -97,15 +97,15 @@ inline void check_parse_error(const ParseError& e, const std::string& path, std:
   DELTAMESH_FUZZ_CHECK(!e.problem().empty(), "ParseError without a problem");
 }
 
-// An InputError that admits to a bug rather than describing bad input.
-inline bool internal_error(const InputError& e) {
-  return std::string(e.what()).find("internal error") != std::string::npos;
-}
-
-// Any exception that is not one of the library's typed errors is a bug.
+// Called in a catch (...) after the bad-input errors a target expects were
+// caught: whatever is left is a bug. InternalError (a broken invariant) is a
+// bug by its type, as is any exception that is not one of the library's
+// typed errors.
 [[noreturn]] inline void unexpected_exception(const char* where) {
   try {
     throw;
+  } catch (const InternalError& e) {
+    fail(std::string(where) + ": internal error (a bug) in " + e.where() + ": " + e.what());
   } catch (const std::exception& e) {
     fail(std::string(where) + ": unexpected exception " + typeid(e).name() + ": " + e.what());
   } catch (...) {

@@ -106,13 +106,12 @@ inline std::string to_poly(const Pslg& g) {
 }
 
 // triangulate() under the targets' rules: an InputError (bad input) ends
-// the run quietly unless it admits to a bug; any other exception is a bug.
+// the run quietly; any other exception (InternalError among them) is a bug.
 // False: nothing to go on with (an error, or no triangle left).
 inline bool triangulate_or_stop(const Pslg& g, const TriangulateOptions& options, Mesh& out) {
   try {
     out = triangulate(g, options);
-  } catch (const InputError& e) {
-    if (internal_error(e)) fail(std::string("triangulate: ") + e.what());
+  } catch (const InputError&) {
     return false;
   } catch (...) {
     unexpected_exception("triangulate");

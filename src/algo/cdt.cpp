@@ -16,7 +16,7 @@
 #include "deltamesh/errors.hpp"
 #include "deltamesh/predicates.hpp"
 #include "core/expansion.hpp"
-#include "deltamesh/predicates.hpp"
+#include "mesh/locate.hpp"
 
 namespace deltamesh {
 
@@ -40,12 +40,19 @@ namespace detail {
 
 namespace {
 
-int sgn(double v) { return v > 0.0 ? 1 : (v < 0.0 ? -1 : 0); }
-
-// u is collinear with a and b (exactly): is it on the ray from a towards b?
-// Differences of doubles have exact signs, so this is exact.
-bool same_direction(const Point& a, const Point& u, const Point& b) {
-  return sgn(u.x - a.x) == sgn(b.x - a.x) && sgn(u.y - a.y) == sgn(b.y - a.y);
+// The bounding box of a non-empty point list.
+struct Box {
+  double x0, x1, y0, y1;
+};
+Box bounding_box(const std::vector<Point>& pts) {
+  Box b{pts[0].x, pts[0].x, pts[0].y, pts[0].y};
+  for (const Point& q : pts) {
+    b.x0 = std::min(b.x0, q.x);
+    b.x1 = std::max(b.x1, q.x);
+    b.y0 = std::min(b.y0, q.y);
+    b.y1 = std::max(b.y1, q.y);
+  }
+  return b;
 }
 
 std::uint64_t saturating_pairs(std::uint64_t s) {
@@ -80,14 +87,8 @@ CdtBuilder::CdtBuilder(Mesh& mesh, const Pslg& pslg, const CdtOptions& options, 
   // The static incircle filter's bound (incircle_fast): differences of
   // coordinates within the bounding box (crossing vertices lie inside it).
   if (!pslg.points.empty()) {
-    double x0 = pslg.points[0].x, x1 = x0, y0 = pslg.points[0].y, y1 = y0;
-    for (const Point& q : pslg.points) {
-      x0 = std::min(x0, q.x);
-      x1 = std::max(x1, q.x);
-      y0 = std::min(y0, q.y);
-      y1 = std::max(y1, q.y);
-    }
-    const double box = std::max(x1 - x0, y1 - y0) * (1.0 + 1e-12);
+    const Box bb = bounding_box(pslg.points);
+    const double box = std::max(bb.x1 - bb.x0, bb.y1 - bb.y0) * (1.0 + 1e-12);
     const double box2 = box * box;
     // Beyond the range where a fourth power stays finite and normal, the
     // bound is useless: leave it infinite, so incircle() always decides.
@@ -161,48 +162,32 @@ CdtBuilder::Trace CdtBuilder::trace(VertexId a, VertexId b) {
   } while (e != start && ++guard < limit);
 
   // Then the triangle around a that the segment leaves through (its far edge
-  // crosses ab), or a neighbour exactly on the segment. Orientations are
-  // exact, so exactly one of these exists in a valid triangulation.
+  // crosses ab), or a neighbour exactly on the segment; then the walk along
+  // ab through the triangles it crosses, up to a constrained edge.
   const Point pa = pt(a), pb = pt(b);
-  e = start;
-  VertexId u = tv_[next_edge(e)];
-  double ou = u == kInfinite ? 0.0 : orient2d(pa, pb, pt(u));
-  HalfEdgeId h = kNone;
-  guard = 0;
-  do {
-    const VertexId w = tv_[prev_edge(e)];
-    const double ow = w == kInfinite ? 0.0 : orient2d(pa, pb, pt(w));
-    if (u != kInfinite) {
-      if (ou == 0.0 && same_direction(pa, pt(u), pb)) return {TraceKind::OnVertex, e, u};
-      if (ou < 0.0 && w != kInfinite && ow > 0.0) {
-        h = next_edge(e);  // u -> w: u right of ab, w left
-        break;
-      }
-    }
-    e = tw_[prev_edge(e)];
-    u = w;
-    ou = ow;
-  } while (e != start && ++guard < limit);
-  if (h == kNone)
-    throw InputError("internal error: no triangle around vertex " + std::to_string(a) + " meets the segment to " +
-                     std::to_string(b));
-
-  // Walk along ab through the triangles it crosses. h runs from the right
-  // of ab to its left, in the triangle on a's side.
-  for (guard = 0; guard < limit; ++guard) {
-    if (flags_[h] & kConstrained) return {TraceKind::Constrained, h};
-    crossings_.push_back(h);
-    const HalfEdgeId g = tw_[h];  // w -> u in the next triangle (w, u, z)
-    const VertexId z = tv_[prev_edge(g)];
-    if (z == b) return {TraceKind::Clean};
-    if (z == kInfinite)
-      throw InputError("internal error: the segment from " + std::to_string(a) + " to " + std::to_string(b) +
-                       " leaves the convex hull");
-    const double oz = orient2d(pa, pb, pt(z));
-    if (oz == 0.0) return {TraceKind::OnVertex, kNone, z};
-    h = oz < 0.0 ? prev_edge(g) : next_edge(g);
+  const SegmentExit ex = segment_exit(tv_.data(), tw_.data(), pts_.data(), start, pa, pa, pb, limit);
+  if (ex.kind == SegmentExit::Kind::Along) return {TraceKind::OnVertex, ex.edge, ex.vertex};
+  if (ex.kind == SegmentExit::Kind::None)
+    throw InternalError("CdtBuilder::trace", "no triangle around vertex " + std::to_string(a) +
+                                                 " meets the segment to " + std::to_string(b));
+  const SegmentWalk w = walk_segment(
+      tv_.data(), tw_.data(), pts_.data(), pa, pb, b, ex.edge,
+      [&](HalfEdgeId h) {
+        if (flags_[h] & kConstrained) return false;
+        crossings_.push_back(h);
+        return true;
+      },
+      limit);
+  switch (w.kind) {
+    case SegmentWalk::Kind::Reached: return {TraceKind::Clean};
+    case SegmentWalk::Kind::OnVertex: return {TraceKind::OnVertex, kNone, w.vertex};
+    case SegmentWalk::Kind::Stopped: return {TraceKind::Constrained, w.edge};
+    case SegmentWalk::Kind::LeftHull:
+      throw InternalError("CdtBuilder::trace", "the segment from " + std::to_string(a) + " to " + std::to_string(b) +
+                                                   " leaves the convex hull");
+    case SegmentWalk::Kind::Overrun: break;
   }
-  throw InputError("internal error: the walk along a segment does not end");
+  throw InternalError("CdtBuilder::trace", "the walk along a segment does not end");
 }
 
 void CdtBuilder::mark(HalfEdgeId e, std::uint32_t seg) {
@@ -343,7 +328,7 @@ void CdtBuilder::resolve_crossing(const Piece& p, HalfEdgeId cd) {
   release(cd);
   const std::size_t before = pts_.size();
   const VertexId v = inserter_.insert_point(cand[0], hint).vertex;
-  if (v == kNone) throw InputError("internal error: a segment crossing could not be located");
+  if (v == kNone) throw InternalError("CdtBuilder::resolve_crossing", "a segment crossing could not be located");
   if (pts_.size() > before) ++st_.intersections;
   pieces_.push_back({v, d, other});
   pieces_.push_back({c, v, other});
@@ -399,14 +384,8 @@ double seconds_since(Clock::time_point t0) { return std::chrono::duration<double
 // the classic order is up to three times faster).
 bool long_segments(const Pslg& pslg) {
   if (pslg.segments.empty() || pslg.points.size() < 3) return false;
-  double x0 = pslg.points[0].x, x1 = x0, y0 = pslg.points[0].y, y1 = y0;
-  for (const Point& p : pslg.points) {
-    x0 = std::min(x0, p.x);
-    x1 = std::max(x1, p.x);
-    y0 = std::min(y0, p.y);
-    y1 = std::max(y1, p.y);
-  }
-  const double area = (x1 - x0) * (y1 - y0);
+  const detail::Box bb = detail::bounding_box(pslg.points);
+  const double area = (bb.x1 - bb.x0) * (bb.y1 - bb.y0);
   if (!(area > 0) || !std::isfinite(area)) return false;
   // The mean length over a sample of (at most about 4096) segments.
   const std::size_t stride = pslg.segments.size() / 4096 + 1;
@@ -501,38 +480,6 @@ void keep_lowest_copies(Mesh& mesh, std::vector<VertexId>& kept) {
   for (VertexId v = 0; v < n; ++v) kept[v] = low[kept[v]];
 }
 }  // namespace
-
-namespace detail {
-
-std::size_t constrained_lawson_flips(Mesh& mesh) {
-  std::vector<HalfEdgeId> stack;
-  const std::size_t halves = mesh.triangle_vertices().size();
-  for (HalfEdgeId e = 0; e < halves; ++e)
-    if (mesh.is_real(tri_of(e)) && mesh.twin(e) != kNone && e < mesh.twin(e)) stack.push_back(e);
-  std::size_t flips = 0;
-  while (!stack.empty()) {
-    const HalfEdgeId e = stack.back();
-    stack.pop_back();
-    const HalfEdgeId f = mesh.twin(e);
-    if (f == kNone || mesh.is_constrained(e) || !mesh.is_real(tri_of(e)) || !mesh.is_real(tri_of(f))) continue;
-    // e = a->b in (a, b, c), f = b->a in (b, a, d): d strictly inside the
-    // circle of abc also makes the quadrilateral strictly convex.
-    const Point& a = mesh.point(mesh.origin(e));
-    const Point& b = mesh.point(mesh.dest(e));
-    const Point& c = mesh.point(mesh.origin(prev_edge(e)));
-    const Point& d = mesh.point(mesh.origin(prev_edge(f)));
-    if (!(incircle(a, b, c, d) > 0)) continue;
-    mesh.flip(e);  // e's slot becomes (c, a, d), f's (d, b, c)
-    ++flips;
-    stack.push_back(e);
-    stack.push_back(next_edge(e));
-    stack.push_back(f);
-    stack.push_back(next_edge(f));
-  }
-  return flips;
-}
-
-}  // namespace detail
 
 Mesh constrained_triangulation(const Pslg& pslg, const CdtOptions& options, CdtStats* stats) {
   CdtStats local;

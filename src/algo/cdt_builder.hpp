@@ -2,6 +2,7 @@
 // shared front end (tracing a segment, splitting it at vertices on it and at
 // crossings with earlier segments) and the seed's recovery methods.
 #pragma once
+#include <algorithm>
 #include <cstdint>
 #include <deque>
 #include <unordered_set>
@@ -13,6 +14,7 @@
 #include "deltamesh/cdt.hpp"
 #include "deltamesh/mesh.hpp"
 #include "deltamesh/pslg.hpp"
+#include "mesh/legalize.hpp"
 
 namespace deltamesh::detail {
 
@@ -82,6 +84,7 @@ class CdtBuilder {
   // Fast met a cavity that encloses triangles: Lifting instead.
   void fast_gave_up(VertexId a, VertexId b, std::uint32_t seg);
   bool in_fallback_ = false;
+  // constrained_lawson() (mesh/legalize.hpp) from `stack`, flips counted in the stats.
   void lawson_flips(std::vector<HalfEdgeId>& stack);
   bool crosses(VertexId a, VertexId b, VertexId c, VertexId d) const;
 
@@ -137,6 +140,18 @@ class CdtBuilder {
   std::vector<HalfEdgeId> cut_edges_;
   std::vector<std::uint32_t> vstamp_, vpos_;
   std::uint32_t vstamp_now_ = 0;
+  // A fresh stamp for vstamp_ (sized to the vertices; cleared on wrap-around).
+  std::uint32_t new_vertex_stamp() {
+    if (vstamp_.size() < pts_.size()) {
+      vstamp_.resize(pts_.size(), 0);
+      vpos_.resize(pts_.size(), 0);
+    }
+    if (++vstamp_now_ == 0) {
+      std::fill(vstamp_.begin(), vstamp_.end(), 0);
+      vstamp_now_ = 1;
+    }
+    return vstamp_now_;
+  }
   struct Job {
     std::uint32_t lo, hi;
     HalfEdgeId parent;
@@ -158,6 +173,14 @@ class CdtBuilder {
   std::vector<HeapEntry> heap_;
   std::vector<std::uint32_t> cavity_stamp_;  // per triangle slot: == stamp_ when in the current cavity
   std::uint32_t stamp_ = 0;
+  // A fresh stamp_ for cavity_stamp_ (sized to the slots; cleared on wrap-around).
+  void new_cavity_stamp() {
+    if (cavity_stamp_.size() < mesh_.num_triangle_slots()) cavity_stamp_.resize(mesh_.num_triangle_slots(), 0);
+    if (++stamp_ == 0) {
+      std::fill(cavity_stamp_.begin(), cavity_stamp_.end(), 0);
+      stamp_ = 1;
+    }
+  }
 };
 
 // The Fast method's first attempt (cdt_chain.cpp): vertices inserted along
@@ -167,10 +190,5 @@ class CdtBuilder {
 // vertex v became (itself, or an earlier copy of its point).
 bool chain_order_cdt(Mesh& mesh, const Pslg& pslg, const CdtOptions& options, CdtStats& stats,
                      std::vector<VertexId>& first_copy);
-
-// Constrained Lawson flips over the real triangles (ghosts and dead slots are
-// left alone) until every unconstrained edge is locally Delaunay. Returns the
-// number of flips.
-std::size_t constrained_lawson_flips(Mesh& mesh);
 
 }  // namespace deltamesh::detail

@@ -20,17 +20,13 @@
 #include "core/spatial_sort.hpp"
 #include "deltamesh/errors.hpp"
 #include "deltamesh/predicates.hpp"
+#include "mesh/legalize.hpp"
+#include "mesh/locate.hpp"
+#include "mesh/split.hpp"
 
 namespace deltamesh::detail {
 
 namespace {
-
-inline std::uint32_t xorshift(std::uint64_t& s) {
-  s ^= s << 13;
-  s ^= s >> 7;
-  s ^= s << 17;
-  return static_cast<std::uint32_t>(s >> 32);
-}
 
 // The vertices of `pslg` in insertion order: depth-first along the segments
 // (a chain in chain order, a polygon in polygon order), components ordered
@@ -116,80 +112,13 @@ std::vector<VertexId> chain_order(const Pslg& pslg, const std::vector<std::uint3
 }  // namespace
 
 VertexId CdtBuilder::insert_vertex(VertexId v, HalfEdgeId near) {
-  const VertexId* const tv_ = this->tv_.data();
-  const HalfEdgeId* const tw_ = this->tw_.data();
-  const Point* const pts_ = this->pts_.data();
-  const std::size_t limit = this->tv_.size() + 16;
-  const Point p = pts_[v];
-  TriId t = tri_of(near);
-  auto ghost = [&](TriId u) {
-    return tv_[3 * u] == kInfinite || tv_[3 * u + 1] == kInfinite || tv_[3 * u + 2] == kInfinite;
-  };
-  if (ghost(t)) {  // step to the real triangle across the ghost's hull edge
-    for (int i = 0; i < 3; ++i) {
-      const HalfEdgeId e = 3 * t + i;
-      if (tv_[e] != kInfinite && tv_[next_edge(e)] != kInfinite) {
-        t = tri_of(tw_[e]);
-        break;
-      }
-    }
-  }
-  // Visibility walk; the edge entered by is skipped (p is strictly beyond
-  // it), the other two are tried in random order, which cannot cycle.
-  Location loc;
-  HalfEdgeId from = kNone;
-  for (std::size_t steps = 0;; ++steps) {
-    if (steps > limit) throw InputError("internal error: point location does not end");
-    ++walk_steps_;
-    const HalfEdgeId base = 3 * t;
-    HalfEdgeId cand[3];
-    int nc = 0;
-    const std::uint32_t r = xorshift(rng_);
-    if (from == kNone) {
-      for (int i = 0; i < 3; ++i) cand[nc++] = base + (r + i) % 3;
-    } else {
-      const HalfEdgeId e1 = next_edge(from), e2 = prev_edge(from);
-      cand[nc++] = (r & 1) ? e1 : e2;
-      cand[nc++] = (r & 1) ? e2 : e1;
-    }
-    HalfEdgeId exit = kNone, zero = kNone;
-    int zeros = 0;
-    for (int i = 0; i < nc; ++i) {
-      const HalfEdgeId e = cand[i];
-      const double o = orient2d(pts_[tv_[e]], pts_[tv_[next_edge(e)]], p);
-      if (o < 0) {
-        exit = e;
-        break;
-      }
-      if (o == 0) {
-        ++zeros;
-        zero = e;
-      }
-    }
-    if (exit == kNone) {
-      loc.tri = t;
-      if (zeros == 0) {
-        loc.kind = Location::Kind::InTriangle;
-      } else if (zeros == 1) {
-        loc.kind = Location::Kind::OnEdge;
-        loc.edge = zero;
-      } else {
-        loc.kind = Location::Kind::OnVertex;
-        for (int i = 0; i < 3; ++i)
-          if (pts_[tv_[base + i]] == p) loc.vertex = tv_[base + i];
-        if (loc.vertex == kNone) throw InputError("internal error: point location met a degenerate triangle");
-      }
-      break;
-    }
-    const HalfEdgeId g = tw_[exit];
-    if (tv_[prev_edge(g)] == kInfinite) {  // entered by a real edge: a ghost has its apex at infinity
-      loc.kind = Location::Kind::Outside;
-      loc.tri = tri_of(g);
-      break;
-    }
-    from = g;
-    t = tri_of(g);
-  }
+  const TriId t = real_triangle_near(tv_.data(), tw_.data(), tri_of(near));
+  // Visibility walk; the edges are tried in random order, which cannot cycle.
+  const WalkResult w =
+      visibility_walk(tv_.data(), tw_.data(), pts_.data(), pts_[v], t, RandomPairOrder{rng_}, tv_.size() + 16);
+  walk_steps_ += w.steps;
+  const Location& loc = w.loc;
+  if (loc.tri == kNone) throw InternalError("CdtBuilder::insert_vertex", "point location does not end");
   if (loc.kind == Location::Kind::OnEdge && (flags_[loc.edge] & kConstrained))
     ++st_.vertices_on_segments;  // a vertex exactly on a segment inserted already splits it
   if ((loc.kind == Location::Kind::InTriangle || loc.kind == Location::Kind::Outside) &&
@@ -224,116 +153,32 @@ void CdtBuilder::release_slots() {
 
 // Triangle t = (a, b, c), or a ghost, split at v into (a, b, v) in t and
 // (b, c, v), (c, a, v) in two reserved slots; then Lawson flips that keep
-// constrained edges. The same steps as Mesh::split_triangle and
-// DelaunayInserter, on the raw arrays (this loop is the chain order's cost).
+// constrained edges. The mesh kernels DelaunayInserter uses, inlined on the
+// raw arrays without the Mesh's bookkeeping (this loop is the chain order's
+// cost; release_slots() recounts).
 void CdtBuilder::split_and_legalize(TriId t, VertexId v) {
   // Raw pointers: nothing here reallocates the arrays.
-  VertexId* const tv_ = this->tv_.data();
-  HalfEdgeId* const tw_ = this->tw_.data();
-  std::uint8_t* const flags_ = this->flags_.data();
-  int* const seg_of_ = this->seg_of_.data();
-  HalfEdgeId* const ve_ = this->ve_.data();
-  const Point* const pts_ = this->pts_.data();
-  const HalfEdgeId e0 = 3 * t, e1 = e0 + 1, e2 = e0 + 2;
-  const VertexId a = tv_[e0], b = tv_[e1], c = tv_[e2];
-  const HalfEdgeId tw_bc = tw_[e1], tw_ca = tw_[e2];
-  const TriId t1 = static_cast<TriId>(next_slot_++), t2 = static_cast<TriId>(next_slot_++);
-  const HalfEdgeId g0 = 3 * t1, h0 = 3 * t2;
-  tv_[g0] = b;
-  tv_[g0 + 1] = c;
-  tv_[g0 + 2] = v;
-  tv_[h0] = c;
-  tv_[h0 + 1] = a;
-  tv_[h0 + 2] = v;
-  tv_[e2] = v;
-  tw_[g0] = tw_bc;
-  tw_[tw_bc] = g0;
-  tw_[h0] = tw_ca;
-  tw_[tw_ca] = h0;
-  tw_[e1] = g0 + 2;
-  tw_[g0 + 2] = e1;
-  tw_[g0 + 1] = h0 + 2;
-  tw_[h0 + 2] = g0 + 1;
-  tw_[h0 + 1] = e2;
-  tw_[e2] = h0 + 1;
-  flags_[g0] = flags_[e1];
-  flags_[h0] = flags_[e2];
-  flags_[e1] = flags_[e2] = flags_[g0 + 1] = flags_[g0 + 2] = flags_[h0 + 1] = flags_[h0 + 2] = 0;
-  if (ids_) {
-    seg_of_[g0] = seg_of_[e1];
-    seg_of_[h0] = seg_of_[e2];
-    seg_of_[e1] = seg_of_[e2] = seg_of_[g0 + 1] = seg_of_[g0 + 2] = seg_of_[h0 + 1] = seg_of_[h0 + 2] = 0;
-  }
-  if (b != kInfinite && ve_[b] == e1) ve_[b] = g0;
-  if (c != kInfinite && ve_[c] == e2) ve_[c] = h0;
-  ve_[v] = e2;
-
-  // Lawson flips: every edge on the stack is opposite v.
-  const Point p = pts_[v];
+  MeshArrays arrays;
+  arrays.tv = tv_.data();
+  arrays.tw = tw_.data();
+  arrays.flags = flags_.data();
+  arrays.markers = ids_ ? seg_of_.data() : nullptr;
+  arrays.out = ve_.data();
+  arrays.pts = pts_.data();
+  constexpr unsigned kCarry = kCarryFlags | kCarryMarkers | kCarryOutEdges;
+  const TriId t1 = static_cast<TriId>(next_slot_), t2 = t1 + 1;
+  next_slot_ += 2;
+  split_triangle_arrays<kCarry>(arrays, t, v, t1, t2);
+  // Lawson flips that keep constrained edges, with the static incircle filter.
+  const auto in_circle = [this](const Point& pa, const Point& pb, const Point& pc, const Point& pd) {
+    return incircle_fast(pa, pb, pc, pd);
+  };
+  RawTopology<kCarry, decltype(in_circle)> topo(arrays, in_circle);
   legal_.clear();
-  legal_.push_back(e0);
-  legal_.push_back(g0);
-  legal_.push_back(h0);
-  while (!legal_.empty()) {
-    const HalfEdgeId e = legal_.back();
-    legal_.pop_back();
-    if (flags_[e] & kConstrained) continue;
-    const HalfEdgeId f = tw_[e];
-    const HalfEdgeId f2 = prev_edge(f);
-    const VertexId x = tv_[e], y = tv_[next_edge(e)], d = tv_[f2];
-    bool flip;
-    if (d == kInfinite)
-      flip = false;
-    else if (y == kInfinite)
-      flip = orient2d(pts_[x], pts_[d], p) > 0;
-    else if (x == kInfinite)
-      flip = orient2d(pts_[d], pts_[y], p) > 0;
-    else
-      flip = incircle_fast(pts_[x], pts_[y], p, pts_[d]) > 0;
-    if (!flip) continue;
-    // e = x->y in (x, y, v), f = y->x in (y, x, d): becomes (v, x, d) and (d, y, v).
-    const HalfEdgeId e1f = next_edge(e), e2f = prev_edge(e), f1 = next_edge(f);
-    const HalfEdgeId tw_yv = tw_[e1f], tw_vx = tw_[e2f], tw_xd = tw_[f1], tw_dy = tw_[f2];
-    tv_[e] = v;
-    tv_[e1f] = x;
-    tv_[e2f] = d;
-    tv_[f] = d;
-    tv_[f1] = y;
-    tv_[f2] = v;
-    tw_[e] = tw_vx;
-    tw_[tw_vx] = e;
-    tw_[e1f] = tw_xd;
-    tw_[tw_xd] = e1f;
-    tw_[f] = tw_dy;
-    tw_[tw_dy] = f;
-    tw_[f1] = tw_yv;
-    tw_[tw_yv] = f1;
-    tw_[e2f] = f2;
-    tw_[f2] = e2f;
-    const std::uint8_t fl_yv = flags_[e1f], fl_vx = flags_[e2f], fl_xd = flags_[f1], fl_dy = flags_[f2];
-    flags_[e] = fl_vx;
-    flags_[e1f] = fl_xd;
-    flags_[e2f] = 0;
-    flags_[f] = fl_dy;
-    flags_[f1] = fl_yv;
-    flags_[f2] = 0;
-    if (ids_) {
-      const int m_yv = seg_of_[e1f], m_vx = seg_of_[e2f], m_xd = seg_of_[f1], m_dy = seg_of_[f2];
-      seg_of_[e] = m_vx;
-      seg_of_[e1f] = m_xd;
-      seg_of_[e2f] = 0;
-      seg_of_[f] = m_dy;
-      seg_of_[f1] = m_yv;
-      seg_of_[f2] = 0;
-    }
-    if (x != kInfinite && (ve_[x] == e || ve_[x] == f1)) ve_[x] = e1f;
-    if (y != kInfinite && (ve_[y] == e1f || ve_[y] == f)) ve_[y] = f1;
-    if (ve_[v] == e2f) ve_[v] = e;
-    if (d != kInfinite && ve_[d] == f2) ve_[d] = f;
-    ++lean_flips_;
-    legal_.push_back(e1f);  // x -> d
-    legal_.push_back(f);    // d -> y
-  }
+  legal_.push_back(3 * t);
+  legal_.push_back(3 * t1);
+  legal_.push_back(3 * t2);
+  lean_flips_ += legalize_around_vertex(topo, v, legal_).flips;
 }
 
 bool chain_order_cdt(Mesh& mesh, const Pslg& pslg, const CdtOptions& options, CdtStats& st,
@@ -377,17 +222,7 @@ bool chain_order_cdt(Mesh& mesh, const Pslg& pslg, const CdtOptions& options, Cd
   mesh.edge_markers_mut().reserve(6 * n + 6);
   VertexId v0 = order[0], v1 = order[i1], v2 = order[i2];
   if (orient2d(pts[v0], pts[v1], pts[v2]) < 0) std::swap(v1, v2);
-  {
-    const TriId t = mesh.add_triangle(v0, v1, v2);
-    const VertexId v[3] = {v0, v1, v2};
-    TriId g[3];
-    for (int i = 0; i < 3; ++i) g[i] = mesh.add_triangle(v[(i + 1) % 3], v[i], kInfinite);
-    for (int i = 0; i < 3; ++i) {
-      mesh.link(3 * t + i, 3 * g[i]);
-      mesh.link(3 * g[i] + 1, 3 * g[(i + 2) % 3] + 2);
-      mesh.set_out_edge(v[i], 3 * t + i);
-    }
-  }
+  make_first_triangle(mesh, v0, v1, v2);
   mesh.recount();
 
   first_copy.assign(n, kNone);

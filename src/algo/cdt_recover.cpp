@@ -14,17 +14,14 @@
 #include "algo/cdt_builder.hpp"
 #include "deltamesh/errors.hpp"
 #include "deltamesh/predicates.hpp"
+#include "mesh/edge_rules.hpp"
+#include "mesh/legalize.hpp"
 
 namespace deltamesh::detail {
 
 namespace {
 
-inline std::uint64_t edge_key(VertexId u, VertexId v) {
-  if (u > v) std::swap(u, v);
-  return (static_cast<std::uint64_t>(u) << 32) | v;
-}
-
-[[noreturn]] void internal(const std::string& what) { throw InputError("internal error: " + what); }
+[[noreturn]] void internal(const char* where, const std::string& what) { throw InternalError(where, what); }
 
 }  // namespace
 
@@ -74,15 +71,7 @@ void CdtBuilder::recover(VertexId a, VertexId b, std::uint32_t seg) {
 // work on any cavity (counted in method_fallbacks).
 
 bool CdtBuilder::cut_excursions(std::vector<VertexId>& chain, std::vector<HalfEdgeId>& out) {
-  if (vstamp_.size() < pts_.size()) {
-    vstamp_.resize(pts_.size(), 0);
-    vpos_.resize(pts_.size(), 0);
-  }
-  if (++vstamp_now_ == 0) {
-    std::fill(vstamp_.begin(), vstamp_.end(), 0);
-    vstamp_now_ = 1;
-  }
-  const std::uint32_t live = vstamp_now_;
+  const std::uint32_t live = new_vertex_stamp();
   std::size_t top = 0;  // chain[0..top] is the reduced chain, out[0..top) its edges
   vstamp_[chain[0]] = live;
   vpos_[chain[0]] = 0;
@@ -153,19 +142,12 @@ void CdtBuilder::recover_fast(VertexId a, [[maybe_unused]] VertexId b, std::uint
   std::reverse(right_out_.begin(), right_out_.end());
 
   // An enclosed vertex or triangle shows as a vertex met twice on a chain.
-  if (vstamp_.size() < pts_.size()) {
-    vstamp_.resize(pts_.size(), 0);
-    vpos_.resize(pts_.size(), 0);
-  }
   bool repeats = false;
   for (const std::vector<VertexId>* chain : {&left_, &right_}) {
-    if (++vstamp_now_ == 0) {
-      std::fill(vstamp_.begin(), vstamp_.end(), 0);
-      vstamp_now_ = 1;
-    }
+    const std::uint32_t now = new_vertex_stamp();
     for (VertexId v : *chain) {
-      repeats = repeats || vstamp_[v] == vstamp_now_;
-      vstamp_[v] = vstamp_now_;
+      repeats = repeats || vstamp_[v] == now;
+      vstamp_[v] = now;
     }
   }
   cut_vertices_.clear();
@@ -175,11 +157,7 @@ void CdtBuilder::recover_fast(VertexId a, [[maybe_unused]] VertexId b, std::uint
       fast_gave_up(a, b, seg);  // a chain that is no walk out and back: a cavity with holes
       return;
     }
-    if (cavity_stamp_.size() < mesh_.num_triangle_slots()) cavity_stamp_.resize(mesh_.num_triangle_slots(), 0);
-    if (++stamp_ == 0) {
-      std::fill(cavity_stamp_.begin(), cavity_stamp_.end(), 0);
-      stamp_ = 1;
-    }
+    new_cavity_stamp();
     for (TriId t : slots_) cavity_stamp_[t] = stamp_;
     for (HalfEdgeId o : cut_edges_) {
       if (cavity_stamp_[tri_of(o)] != stamp_) {  // an edge cut out with the outside behind it
@@ -204,7 +182,7 @@ void CdtBuilder::recover_fast(VertexId a, [[maybe_unused]] VertexId b, std::uint
       for (std::uint32_t m = j.lo + 2; m < j.hi; ++m)
         if (incircle(pu, pv, pt(chain[c]), pt(chain[m])) > 0) c = m;
       const VertexId vc = chain[c];
-      if (next_slot >= slots_.size()) internal("cavity retriangulation needs more triangles than it removed");
+      if (next_slot >= slots_.size()) internal("CdtBuilder::recover_fast", "cavity retriangulation needs more triangles than it removed");
       const TriId t = slots_[next_slot++];
       const HalfEdgeId e = 3 * t;
       tv_[e] = u;
@@ -252,14 +230,14 @@ void CdtBuilder::recover_fast(VertexId a, [[maybe_unused]] VertexId b, std::uint
   st_.cavity_triangles += slots_.size();
   mark(top_left, seg);
   if (cut_vertices_.empty()) {
-    if (next_slot != slots_.size()) internal("cavity retriangulation left triangles over");
+    if (next_slot != slots_.size()) internal("CdtBuilder::recover_fast", "cavity retriangulation left triangles over");
     return;
   }
   for (std::size_t i = next_slot; i < slots_.size(); ++i) mesh_.remove_triangle(slots_[i]);
   for (VertexId v : cut_vertices_) ve_[v] = kNone;
   for (VertexId v : cut_vertices_) {
     if (inserter_.insert_existing(v, tri_of(top_left)).vertex != v)
-      internal("a vertex enclosed by a segment's cavity could not be inserted again");
+      internal("CdtBuilder::recover_fast", "a vertex enclosed by a segment's cavity could not be inserted again");
   }
 }
 
@@ -267,7 +245,7 @@ void CdtBuilder::recover_fast(VertexId a, [[maybe_unused]] VertexId b, std::uint
 // Ct and Lawson.
 
 void CdtBuilder::fallback_fast(VertexId a, VertexId b, std::uint32_t seg) {
-  if (in_fallback_) internal("no recovery method could insert a segment piece");
+  if (in_fallback_) internal("CdtBuilder::fallback_fast", "no recovery method could insert a segment piece");
   ++st_.method_fallbacks;
   struct Guard {
     bool& flag;
@@ -279,7 +257,7 @@ void CdtBuilder::fallback_fast(VertexId a, VertexId b, std::uint32_t seg) {
     mark(tr.edge, seg);
     return;
   }
-  if (tr.kind != TraceKind::Clean) internal("a segment piece changed while it was recovered");
+  if (tr.kind != TraceKind::Clean) internal("CdtBuilder::fallback_fast", "a segment piece changed while it was recovered");
   recover_fast(a, b, seg);
 }
 
@@ -336,7 +314,7 @@ void CdtBuilder::recover_flips(VertexId a, VertexId b, std::uint32_t seg, bool l
   }
   if (done) {
     const HalfEdgeId ab = mesh_.find_edge(a, b);
-    if (ab == kNone) internal("no crossing edge is left but the segment is not an edge");
+    if (ab == kNone) internal("CdtBuilder::recover_flips", "no crossing edge is left but the segment is not an edge");
     mark(ab, seg);
   } else {
     fallback_fast(a, b, seg);
@@ -348,24 +326,8 @@ void CdtBuilder::recover_flips(VertexId a, VertexId b, std::uint32_t seg, bool l
 // pushed is locally Delaunay. A flip pushes the four edges around it, so
 // an edge that changes neighbours is always looked at again.
 void CdtBuilder::lawson_flips(std::vector<HalfEdgeId>& stack) {
-  while (!stack.empty()) {
-    const HalfEdgeId e = stack.back();
-    stack.pop_back();
-    if (flags_[e] & kConstrained) continue;
-    const HalfEdgeId f = tw_[e];
-    const VertexId a = tv_[e], b = tv_[next_edge(e)], c = tv_[prev_edge(e)], d = tv_[prev_edge(f)];
-    // Hull edges and edges to the vertex at infinity are locally Delaunay.
-    if (a == kInfinite || b == kInfinite || c == kInfinite || d == kInfinite) continue;
-    if (!(incircle(pt(a), pt(b), pt(c), pt(d)) > 0)) continue;
-    // d inside the circle of abc, on the other side of ab: the quadrilateral
-    // is strictly convex, so the flip is valid.
-    mesh_.flip(e);  // e's slot becomes (c, a, d), f's (d, b, c)
-    ++st_.flips;
-    stack.push_back(e);
-    stack.push_back(next_edge(e));
-    stack.push_back(f);
-    stack.push_back(next_edge(f));
-  }
+  auto topo = lawson_topology(mesh_);
+  st_.flips += constrained_lawson(topo, stack);
 }
 
 // ---------------------------------------------------------------------------
@@ -382,11 +344,7 @@ void CdtBuilder::lawson_flips(std::vector<HalfEdgeId>& stack) {
 void CdtBuilder::recover_lifting(VertexId a, VertexId b, std::uint32_t seg) {
   const Point pa = pt(a), pb = pt(b);
   // The cavity: the triangles crossed by ab (flips keep slots).
-  if (cavity_stamp_.size() < mesh_.num_triangle_slots()) cavity_stamp_.resize(mesh_.num_triangle_slots(), 0);
-  if (++stamp_ == 0) {
-    std::fill(cavity_stamp_.begin(), cavity_stamp_.end(), 0);
-    stamp_ = 1;
-  }
+  new_cavity_stamp();
   lawson_stack_.clear();
   auto add_slot = [&](TriId t) {
     cavity_stamp_[t] = stamp_;
@@ -423,15 +381,7 @@ void CdtBuilder::recover_lifting(VertexId a, VertexId b, std::uint32_t seg) {
   }
 
   // Side of ab of each vertex, computed once per piece.
-  if (vstamp_.size() < pts_.size()) {
-    vstamp_.resize(pts_.size(), 0);
-    vpos_.resize(pts_.size(), 0);
-  }
-  if (++vstamp_now_ == 0) {
-    std::fill(vstamp_.begin(), vstamp_.end(), 0);
-    vstamp_now_ = 1;
-  }
-  const std::uint32_t sides = vstamp_now_;
+  const std::uint32_t sides = new_vertex_stamp();
   auto side = [&](VertexId v) -> int {
     if (vstamp_[v] != sides) {
       const double o = orient2d(pa, pb, pt(v));

@@ -12,6 +12,9 @@
 #include "core/spatial_sort.hpp"
 #include "deltamesh/errors.hpp"
 #include "deltamesh/predicates.hpp"
+#include "mesh/legalize.hpp"
+#include "mesh/locate.hpp"
+#include "mesh/split.hpp"
 
 namespace deltamesh {
 
@@ -23,30 +26,9 @@ double seconds_since(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
 }
 
-// Real triangle (a, b, c) counter-clockwise plus its three ghosts, linked.
-void make_first_triangle(Mesh& mesh, VertexId a, VertexId b, VertexId c) {
-  const TriId t = mesh.add_triangle(a, b, c);
-  const VertexId v[3] = {a, b, c};
-  TriId g[3];
-  for (int i = 0; i < 3; ++i) g[i] = mesh.add_triangle(v[(i + 1) % 3], v[i], kInfinite);
-  for (int i = 0; i < 3; ++i) {
-    mesh.link(3 * t + i, 3 * g[i]);
-    // Ghost g[i] = (v[i+1], v[i], inf): its edge v[i] -> inf meets ghost
-    // g[i-1] = (v[i], v[i-1], inf) at its edge inf -> v[i].
-    mesh.link(3 * g[i] + 1, 3 * g[(i + 2) % 3] + 2);
-    mesh.set_out_edge(v[i], 3 * t + i);
-  }
-}
-
-
-// Local index arithmetic without repeated divisions: the hot loops split a
-// half-edge into (base, i) once and look up the other two.
-constexpr std::uint8_t kNextIndex[3] = {1, 2, 0};
-constexpr std::uint8_t kPrevIndex[3] = {2, 0, 1};
-
-// The bulk builder: the same split + Lawson flips as detail::DelaunayInserter,
-// on raw arrays sized once, without per-vertex out-edges (compact() rebuilds
-// them), because this loop is where a 10^6-point triangulation spends its time.
+// The bulk builder: split + Lawson flips (mesh/legalize.hpp) on raw arrays
+// sized once, without per-vertex out-edges (compact() rebuilds them), because
+// this loop is where a 10^6-point triangulation spends its time.
 class BulkBuilder {
  public:
   BulkBuilder(Mesh& mesh, std::size_t max_triangles)
@@ -67,189 +49,60 @@ class BulkBuilder {
   // Inserts vertex v; returns v, or the vertex it coincides with. `hint`
   // (a real triangle) is updated to a triangle near v for the next walk.
   VertexId insert(VertexId v, TriId& hint) {
-    const Point& p = p_[v];
-    // Visibility walk. In a Delaunay triangulation it cannot cycle, so the
-    // edges are tried in a fixed order; the entry edge is never an exit.
-    HalfEdgeId base = 3 * hint;
-    const double o0 = orient2d(p_[v_[base]], p_[v_[base + 1]], p);
-    const double o1 = orient2d(p_[v_[base + 1]], p_[v_[base + 2]], p);
-    const double o2 = orient2d(p_[v_[base + 2]], p_[v_[base]], p);
-    HalfEdgeId exit = o0 < 0 ? base : o1 < 0 ? base + 1 : o2 < 0 ? base + 2 : kNone;
-    if (exit == kNone) return insert_in_closed(v, base, o0, o1, o2, hint);
-    for (;;) {
-      const HalfEdgeId from = tw_[exit];
-      const unsigned i = from % 3;
-      base = from - i;
-      const HalfEdgeId e1 = base + kNextIndex[i], e2 = base + kPrevIndex[i];
-      const VertexId va = v_[from], vb = v_[e1], vc = v_[e2];
-      if (vc == kInfinite || va == kInfinite || vb == kInfinite) {
-        // Crossed a hull edge: p sees it from outside; the ghost takes p.
-        split(tri_of(from), v);
+    // In a Delaunay triangulation the walk cannot cycle, so the edges are
+    // tried in a fixed order.
+    const Location loc = detail::visibility_walk(v_, tw_, p_, p_[v], hint, detail::FixedEdgeOrder{}).loc;
+    switch (loc.kind) {
+      case Location::Kind::OnVertex:
+        hint = loc.tri;
+        return loc.vertex;
+      case Location::Kind::OnEdge:
+        split_edge(loc.edge, v);
         break;
-      }
-      const double oa = orient2d(p_[vb], p_[vc], p);  // edge e1
-      if (oa < 0) {
-        exit = e1;
-        continue;
-      }
-      const double ob = orient2d(p_[vc], p_[va], p);  // edge e2
-      if (ob < 0) {
-        exit = e2;
-        continue;
-      }
-      // Inside the closed triangle; the entry edge has p strictly left.
-      double o[3];
-      o[i] = 1.0;
-      o[kNextIndex[i]] = oa;
-      o[kPrevIndex[i]] = ob;
-      return insert_in_closed(v, base, o[0], o[1], o[2], hint);
+      case Location::Kind::InTriangle:
+      case Location::Kind::Outside:  // the ghost beyond the hull edge p sees takes p
+        split(loc.tri, v);
+        break;
     }
-    legalize(v);
-    hint = real_near(last_);
+    detail::RawTopology<detail::kCarryTopologyOnly> topo(arrays());
+    const HalfEdgeId last = detail::legalize_around_vertex(topo, v, stack_).last;
+    hint = detail::real_triangle_near(v_, tw_, tri_of(last));
     return v;
   }
 
  private:
-  // p lies in the closed real triangle at `base`, with orientations o0..o2
-  // against its three edges (none negative).
-  VertexId insert_in_closed(VertexId v, HalfEdgeId base, double o0, double o1, double o2, TriId& hint) {
-    const int zeros = (o0 == 0) + (o1 == 0) + (o2 == 0);
-    if (zeros == 2) {  // on the vertex both zero edges share
-      const unsigned k = o0 != 0 ? 2 : o1 != 0 ? 0 : 1;
-      hint = tri_of(base);
-      return v_[base + k];
-    }
-    if (zeros == 1)
-      split_edge(o0 == 0 ? base : o1 == 0 ? base + 1 : base + 2, v);
-    else
-      split(tri_of(base), v);
-    legalize(v);
-    hint = real_near(last_);
-    return v;
-  }
-
   void push(HalfEdgeId e) { stack_.push_back(e); }
-  // t itself, or the real triangle across a ghost's hull edge.
-  TriId real_near(TriId t) const {
-    for (int i = 0; i < 3; ++i) {
-      const HalfEdgeId e = 3 * t + i;
-      if (v_[e] == kInfinite) return tri_of(tw_[3 * t + kNextIndex[i]]);
-    }
-    return t;
+
+  detail::MeshArrays arrays() const {
+    detail::MeshArrays a;
+    a.tv = v_;
+    a.tw = tw_;
+    a.pts = p_;
+    return a;
   }
 
-  // Triangle t = (a, b, c) becomes (a, b, v) + new (b, c, v) + new (c, a, v).
+  // Triangle t = (a, b, c) becomes (a, b, v) + new (b, c, v) + new (c, a, v);
+  // the edges opposite v go on the stack.
   void split(TriId t, VertexId v) {
-    const HalfEdgeId e0 = 3 * t, e1 = e0 + 1, e2 = e0 + 2;
-    const VertexId a = v_[e0], b = v_[e1], c = v_[e2];
-    const HalfEdgeId tw_bc = tw_[e1], tw_ca = tw_[e2];
-    const HalfEdgeId g0 = static_cast<HalfEdgeId>(used_), h0 = g0 + 3;
+    const TriId t1 = static_cast<TriId>(used_ / 3);
     used_ += 6;
-    v_[g0] = b;
-    v_[g0 + 1] = c;
-    v_[g0 + 2] = v;
-    v_[h0] = c;
-    v_[h0 + 1] = a;
-    v_[h0 + 2] = v;
-    tw_[g0] = tw_bc;
-    tw_[g0 + 1] = h0 + 2;
-    tw_[g0 + 2] = e1;
-    tw_[h0] = tw_ca;
-    tw_[h0 + 1] = e2;
-    tw_[h0 + 2] = g0 + 1;
-    tw_[tw_bc] = g0;
-    tw_[tw_ca] = h0;
-    v_[e2] = v;
-    tw_[e1] = g0 + 2;
-    tw_[e2] = h0 + 1;
-    push(e0);
-    push(g0);
-    push(h0);
+    detail::split_triangle_arrays<detail::kCarryTopologyOnly>(arrays(), t, v, t1, t1 + 1);
+    push(3 * t);
+    push(3 * t1);
+    push(3 * t1 + 3);
   }
 
   // Edge e = (a, b) between (a, b, c) and (b, a, d) is split at v into
   // (a, v, c), new (v, b, c), (b, v, d), new (v, a, d).
   void split_edge(HalfEdgeId e, VertexId v) {
-    const unsigned ie = e % 3;
-    const HalfEdgeId e1 = e - ie + kNextIndex[ie], e2 = e - ie + kPrevIndex[ie];
     const HalfEdgeId f = tw_[e];
-    const unsigned jf = f % 3;
-    const HalfEdgeId f1 = f - jf + kNextIndex[jf], f2 = f - jf + kPrevIndex[jf];
-    const VertexId a = v_[e], b = v_[e1], c = v_[e2], d = v_[f2];
-    const HalfEdgeId tw_bc = tw_[e1], tw_ad = tw_[f1];
-    const HalfEdgeId g0 = static_cast<HalfEdgeId>(used_), h0 = g0 + 3;
+    const TriId t3 = static_cast<TriId>(used_ / 3);
     used_ += 6;
-    v_[g0] = v;
-    v_[g0 + 1] = b;
-    v_[g0 + 2] = c;
-    v_[h0] = v;
-    v_[h0 + 1] = a;
-    v_[h0 + 2] = d;
-    v_[e1] = v;
-    v_[f1] = v;
-    tw_[g0] = f;
-    tw_[f] = g0;
-    tw_[g0 + 1] = tw_bc;
-    tw_[tw_bc] = g0 + 1;
-    tw_[g0 + 2] = e1;
-    tw_[e1] = g0 + 2;
-    tw_[h0] = e;
-    tw_[e] = h0;
-    tw_[h0 + 1] = tw_ad;
-    tw_[tw_ad] = h0 + 1;
-    tw_[h0 + 2] = f1;
-    tw_[f1] = h0 + 2;
-    push(e2);
+    const HalfEdgeId g0 = detail::split_edge_arrays<detail::kCarryTopologyOnly>(arrays(), e, v, t3, t3 + 1);
+    push(prev_edge(e));
     push(g0 + 1);
-    push(f2);
-    push(h0 + 1);
-  }
-
-  void legalize(VertexId v) {
-    const Point& p = p_[v];
-    while (!stack_.empty()) {
-      const HalfEdgeId e = stack_.back();
-      stack_.pop_back();
-      const unsigned ie = e % 3;
-      const HalfEdgeId be = e - ie;
-      last_ = be / 3;
-      const HalfEdgeId e1 = be + kNextIndex[ie], e2 = be + kPrevIndex[ie];
-      const HalfEdgeId f = tw_[e];
-      const unsigned jf = f % 3;
-      const HalfEdgeId bf = f - jf;
-      const HalfEdgeId f1 = bf + kNextIndex[jf], f2 = bf + kPrevIndex[jf];
-      const VertexId a = v_[e], b = v_[e1], d = v_[f2];
-      bool flip_it;
-      if (d == kInfinite)
-        flip_it = false;
-      else if (b == kInfinite)
-        flip_it = orient2d(p_[a], p_[d], p) > 0;
-      else if (a == kInfinite)
-        flip_it = orient2d(p_[d], p_[b], p) > 0;
-      else
-        flip_it = incircle(p_[a], p_[b], p, p_[d]) > 0;
-      if (!flip_it) continue;
-      // (a, b, v) + (b, a, d) become (v, a, d) in e's slot and (d, b, v) in f's.
-      const HalfEdgeId tw_bc = tw_[e1], tw_ca = tw_[e2], tw_ad = tw_[f1], tw_db = tw_[f2];
-      v_[e] = v;
-      v_[e1] = a;
-      v_[e2] = d;
-      v_[f] = d;
-      v_[f1] = b;
-      v_[f2] = v;
-      tw_[e] = tw_ca;
-      tw_[tw_ca] = e;
-      tw_[e1] = tw_ad;
-      tw_[tw_ad] = e1;
-      tw_[f] = tw_db;
-      tw_[tw_db] = f;
-      tw_[f1] = tw_bc;
-      tw_[tw_bc] = f1;
-      tw_[e2] = f2;
-      tw_[f2] = e2;
-      push(e1);
-      push(f);
-    }
+    push(prev_edge(f));
+    push(g0 + 4);
   }
 
   Mesh& mesh_;
@@ -258,7 +111,6 @@ class BulkBuilder {
   HalfEdgeId* tw_ = nullptr;
   const Point* p_;
   std::vector<HalfEdgeId> stack_;
-  TriId last_ = 0;
 };
 
 }  // namespace
@@ -291,9 +143,9 @@ Mesh delaunay(std::span<const Point> points, const DelaunayOptions& options, Del
   }
   mesh.reserve(n, 2 * n + 2);
   if (orient2d(pts[0], pts[i1], pts[i2]) > 0)
-    make_first_triangle(mesh, 0, static_cast<VertexId>(i1), static_cast<VertexId>(i2));
+    detail::make_first_triangle(mesh, 0, static_cast<VertexId>(i1), static_cast<VertexId>(i2));
   else
-    make_first_triangle(mesh, 0, static_cast<VertexId>(i2), static_cast<VertexId>(i1));
+    detail::make_first_triangle(mesh, 0, static_cast<VertexId>(i2), static_cast<VertexId>(i1));
 
   // (duplicate, the vertex it met) in insertion order.
   std::vector<std::pair<VertexId, VertexId>> dups;

@@ -26,21 +26,12 @@
 #include "deltamesh/errors.hpp"
 #include "deltamesh/predicates.hpp"
 #include "deltamesh/triangulate.hpp"
+#include "mesh/edge_rules.hpp"
+#include "mesh/locate.hpp"
 
 namespace deltamesh {
 
 namespace {
-
-int sgn(double v) { return v > 0.0 ? 1 : (v < 0.0 ? -1 : 0); }
-
-// u is collinear with a and b: is it on the ray from a towards b?
-bool same_direction(const Point& a, const Point& u, const Point& b) {
-  return sgn(u.x - a.x) == sgn(b.x - a.x) && sgn(u.y - a.y) == sgn(b.y - a.y);
-}
-
-std::uint64_t edge_key(VertexId a, VertexId b) {
-  return (std::uint64_t{std::min(a, b)} << 32) | std::max(a, b);
-}
 
 // The half-edges of a straight chain of edges of the compacted mesh from a
 // to b (appended to `chain`), or false when the segment is not one.
@@ -204,7 +195,7 @@ Closed close_mesh(const Mesh& m) {
   for (std::size_t i = 0; i < keys.size(); i += 2) {
     if (i + 1 >= keys.size() || keys[i].edge != keys[i + 1].edge ||
         out.origin(keys[i].half) != out.dest(keys[i + 1].half))
-      throw InputError("internal error: the filled mesh does not close");
+      throw InternalError("close_mesh", "the filled mesh does not close");
     out.link(keys[i].half, keys[i + 1].half);
   }
   for (HalfEdgeId e = 0; e < tw.size(); ++e)
@@ -216,53 +207,32 @@ Closed close_mesh(const Mesh& m) {
 // `inside`) of the closed mesh? A walk along it (as CdtBuilder::trace does):
 // around each vertex reached, the triangle it enters or the edge it runs
 // along, then through the triangles it crosses to the next vertex on it.
-bool stays_inside(const Mesh& c, std::size_t inside, VertexId a, VertexId b) {
+bool stays_inside(Mesh& c, std::size_t inside, VertexId a, VertexId b) {
   const Point pa = c.point(a), pb = c.point(b);
   auto in = [&](HalfEdgeId e) { return tri_of(e) < inside; };
+  const VertexId* tv = c.tri_v_mut().data();
+  const HalfEdgeId* tw = c.twin_mut().data();
+  const Point* pts = c.points().data();
+  const std::size_t limit = c.triangle_vertices().size() + 3;
   VertexId cur = a;
   for (std::size_t guard = 0; cur != b; ++guard) {
-    if (guard > c.num_vertices()) throw InputError("internal error: the walk along a segment does not end");
-    const Point pc = c.point(cur);
-    HalfEdgeId enter = kNone, along = kNone;
-    const HalfEdgeId start = c.out_edge(cur);
-    HalfEdgeId e = start;
-    do {
-      const VertexId u = c.dest(e), w = c.origin(prev_edge(e));
-      if (u != kInfinite) {
-        const double ou = orient2d(pa, pb, c.point(u));
-        if (ou == 0 && same_direction(pc, c.point(u), pb)) {
-          along = e;
-          break;
-        }
-        if (ou < 0 && w != kInfinite && orient2d(pa, pb, c.point(w)) > 0) {
-          enter = next_edge(e);  // u -> w: u right of ab, w left
-          break;
-        }
-      }
-      e = c.rotate_ccw(e);
-    } while (e != start);
-    if (along != kNone) {
-      if (!in(along) && !in(c.twin(along))) return false;
-      cur = c.dest(along);
+    if (guard > c.num_vertices()) throw InternalError("stays_inside", "the walk along a segment does not end");
+    const detail::SegmentExit ex = detail::segment_exit(tv, tw, pts, c.out_edge(cur), c.point(cur), pa, pb, limit);
+    if (ex.kind == detail::SegmentExit::Kind::Along) {
+      if (!in(ex.edge) && !in(c.twin(ex.edge))) return false;
+      cur = ex.vertex;
       continue;
     }
-    if (enter == kNone) throw InputError("internal error: no triangle around a vertex meets the segment");
-    if (!in(enter)) return false;
-    for (std::size_t steps = 0;; ++steps) {
-      if (steps > c.num_triangle_slots()) throw InputError("internal error: the walk along a segment does not end");
-      const HalfEdgeId g = c.twin(enter);  // w -> u in the next triangle (w, u, z)
-      if (!in(g)) return false;
-      const VertexId z = c.origin(prev_edge(g));
-      if (z == b) {
-        cur = b;
-        break;
-      }
-      const double oz = orient2d(pa, pb, c.point(z));
-      if (oz == 0) {
-        cur = z;
-        break;
-      }
-      enter = oz < 0 ? prev_edge(g) : next_edge(g);
+    if (ex.kind == detail::SegmentExit::Kind::None)
+      throw InternalError("stays_inside", "no triangle around a vertex meets the segment");
+    const detail::SegmentWalk w = detail::walk_segment(
+        tv, tw, pts, pa, pb, b, ex.edge, [&](HalfEdgeId h) { return in(h) && in(tw[h]); }, limit);
+    switch (w.kind) {
+      case detail::SegmentWalk::Kind::Reached: cur = b; break;
+      case detail::SegmentWalk::Kind::OnVertex: cur = w.vertex; break;
+      case detail::SegmentWalk::Kind::Stopped: return false;
+      case detail::SegmentWalk::Kind::LeftHull:
+      case detail::SegmentWalk::Kind::Overrun: throw InternalError("stays_inside", "the walk along a segment does not end");
     }
   }
   return true;

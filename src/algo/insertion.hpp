@@ -1,10 +1,12 @@
-// Delaunay vertex insertion (split + Lawson flips) on a mesh with ghost
-// triangles. Shared by point-set Delaunay and later by CDT and refinement.
+// Delaunay vertex insertion on a mesh with ghost triangles: locate
+// (Mesh::locate), split the triangle or edge, then Lawson flips around the new
+// vertex (mesh/legalize.hpp). Used by the CDT builders and
+// insert_delaunay_vertex().
 #pragma once
 #include <vector>
 
 #include "deltamesh/mesh.hpp"
-#include "deltamesh/predicates.hpp"
+#include "mesh/legalize.hpp"
 
 namespace deltamesh::detail {
 
@@ -20,20 +22,8 @@ class DelaunayInserter {
   // Inserts vertex v, already in mesh.points() but in no triangle.
   Result insert_existing(VertexId v, TriId hint) {
     const Location loc = mesh_.locate(mesh_.point(v), hint);
-    switch (loc.kind) {
-      case Location::Kind::OnVertex:
-        return {loc.vertex, loc.tri};
-      case Location::Kind::OnEdge:
-        insert_on_edge(loc.edge, v);
-        break;
-      case Location::Kind::InTriangle:
-      case Location::Kind::Outside:
-        if (loc.tri == kNone) return {kNone, kNone};
-        insert_in_triangle(loc.tri, v);
-        break;
-    }
-    legalize(v);
-    return {v, tri_of(mesh_.out_edge(v))};
+    if (loc.kind != Location::Kind::OnVertex && loc.tri == kNone) return {kNone, kNone};
+    return insert_located(loc, v);
   }
 
   // Inserts vertex v (in mesh.points() but in no triangle) by splitting the
@@ -103,33 +93,9 @@ class DelaunayInserter {
     }
   }
 
-  // Does the neighbour across e (opposite v in its own triangle) need a flip?
-  bool should_flip(HalfEdgeId e, VertexId v) const {
-    const HalfEdgeId f = mesh_.twin(e);
-    if (f == kNone || mesh_.is_constrained(e)) return false;
-    const VertexId a = mesh_.origin(e), b = mesh_.dest(e);
-    const VertexId d = mesh_.origin(prev_edge(f));
-    if (d == kInfinite) return false;
-    const Point& p = mesh_.point(v);
-    // Across a ghost edge the "circle" of the neighbouring ghost is the open
-    // half-plane beyond its hull edge.
-    if (b == kInfinite) return orient2d(mesh_.point(a), mesh_.point(d), p) > 0;
-    if (a == kInfinite) return orient2d(mesh_.point(d), mesh_.point(b), p) > 0;
-    return incircle(mesh_.point(a), mesh_.point(b), p, mesh_.point(d)) > 0;
-  }
-
   void legalize(VertexId v) {
-    while (!stack_.empty()) {
-      const HalfEdgeId e = stack_.back();
-      stack_.pop_back();
-      if (!should_flip(e, v)) continue;
-      const HalfEdgeId f = mesh_.twin(e);
-      mesh_.flip(e);
-      ++flips_;
-      // Slots keep their ids: e's triangle is now (v, a, d), f's is (d, b, v).
-      stack_.push_back(next_edge(e));
-      stack_.push_back(f);
-    }
+    MeshTopology topo(mesh_);
+    flips_ += legalize_around_vertex(topo, v, stack_).flips;
   }
 
   Mesh& mesh_;

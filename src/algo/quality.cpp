@@ -8,18 +8,11 @@
 #include <sstream>
 #include <vector>
 
+#include "core/angles.hpp"
+
 namespace deltamesh {
 
 namespace {
-
-constexpr double kDeg = 180.0 / std::numbers::pi;
-
-// Angle at a of triangle abc, in degrees (atan2 of cross and dot: accurate
-// for tiny and near-180° angles alike).
-double angle_at(const Point& a, const Point& b, const Point& c) {
-  const double ux = b.x - a.x, uy = b.y - a.y, wx = c.x - a.x, wy = c.y - a.y;
-  return std::atan2(std::fabs(ux * wy - uy * wx), ux * wx + uy * wy) * kDeg;
-}
 
 std::string fmt(double v) {
   char buf[64];
@@ -48,7 +41,7 @@ QualityReport quality_report(const Mesh& mesh, const QualityOptions& opt, const 
       if (mesh.is_constrained(e) && (mesh.twin(e) == kNone || mesh.twin(e) > e)) ++r.segments;
     }
     ++r.triangles;
-    const double angles[3] = {angle_at(a, b, c), angle_at(b, c, a), angle_at(c, a, b)};
+    const double angles[3] = {angle_at_deg(a, b, c), angle_at_deg(b, c, a), angle_at_deg(c, a, b)};
     const double lo = std::min({angles[0], angles[1], angles[2]});
     const double hi = std::max({angles[0], angles[1], angles[2]});
     for (double ang : angles) r.angle_histogram[std::min<std::size_t>(17, static_cast<std::size_t>(ang / 10.0))]++;

@@ -4,19 +4,9 @@
 #include <string>
 
 #include "deltamesh/errors.hpp"
+#include "mesh/edge_rules.hpp"
 
 namespace deltamesh {
-
-namespace {
-
-// The real twin of e, or kNone on the mesh boundary (hull twins are kNone
-// once compacted, ghost triangles before).
-HalfEdgeId real_twin(const Mesh& mesh, HalfEdgeId e) {
-  const HalfEdgeId f = mesh.twin(e);
-  return f != kNone && mesh.is_real(tri_of(f)) ? f : kNone;
-}
-
-}  // namespace
 
 MidpointNodes midpoint_nodes(const Mesh& mesh) {
   MidpointNodes out;
@@ -42,10 +32,7 @@ MidpointNodes midpoint_nodes(const Mesh& mesh) {
         out.attributes.push_back(0.5 * (va + vb));
       }
       const HalfEdgeId f = real_twin(mesh, e);
-      int marker = mesh.edge_marker(e);
-      if (marker == 0 && f != kNone) marker = mesh.edge_marker(f);
-      const bool segment = mesh.is_constrained(e) || f == kNone;  // refine treats the boundary as segments
-      out.markers.push_back(segment && marker != 0 ? marker : (f == kNone ? 1 : 0));
+      out.markers.push_back(edge_output_marker(mesh, e, f));
       const VertexId id = base + static_cast<VertexId>(out.points.size() - 1);
       out.tri_nodes[slot] = id;
       if (f != kNone) out.tri_nodes[3 * std::size_t{tri_of(f)} + (f % 3 + 2) % 3] = id;

@@ -10,6 +10,7 @@
 #include "deltamesh/errors.hpp"
 #include "deltamesh/predicates.hpp"
 #include "algo/vertex_data.hpp"
+#include "mesh/edge_rules.hpp"
 
 namespace deltamesh {
 
@@ -125,8 +126,8 @@ std::size_t count_constrained_edges(const Mesh& mesh) {
     if (!mesh.is_real(t)) continue;
     for (HalfEdgeId e = 3 * t; e < 3 * t + 3; ++e) {
       if (!mesh.is_constrained(e)) continue;
-      const HalfEdgeId f = mesh.twin(e);
-      if (f == kNone || !mesh.is_real(tri_of(f)) || e < f) ++count;
+      const HalfEdgeId f = real_twin(mesh, e);
+      if (f == kNone || e < f) ++count;
     }
   }
   return count;
@@ -159,8 +160,7 @@ void finish_vertex_markers(Mesh& mesh) {
   for (TriId t = 0; t < slots; ++t) {
     if (!mesh.is_real(t)) continue;
     for (HalfEdgeId e = 3 * t; e < 3 * t + 3; ++e) {
-      const HalfEdgeId f = mesh.twin(e);
-      if (f != kNone && mesh.is_real(tri_of(f))) continue;
+      if (real_twin(mesh, e) != kNone) continue;
       if (markers[mesh.origin(e)] == 0) markers[mesh.origin(e)] = 1;
       if (markers[mesh.dest(e)] == 0) markers[mesh.dest(e)] = 1;
     }
@@ -292,7 +292,7 @@ Mesh mesh_from_triangles(const Pslg& nodes, std::span<const VertexId> triangles,
   keys.reserve(3 * nt);
   for (HalfEdgeId e = 0; e < 3 * nt; ++e) {
     const VertexId a = mesh.origin(e), b = mesh.dest(e);
-    keys.push_back({(std::uint64_t{std::min(a, b)} << 32) | std::max(a, b), e});
+    keys.push_back({edge_key(a, b), e});
   }
   std::sort(keys.begin(), keys.end(), [](const Key& x, const Key& y) {
     return x.edge != y.edge ? x.edge < y.edge : x.half < y.half;

@@ -8,6 +8,7 @@
 #include <unordered_map>
 
 #include "deltamesh/predicates.hpp"
+#include "mesh/edge_rules.hpp"
 #include "validate_overlap.hpp"
 
 namespace deltamesh {
@@ -240,8 +241,8 @@ class Checker {
       if (!mesh_.is_real(t)) continue;
       for (int i = 0; i < 3; ++i) {
         const HalfEdgeId e = 3 * t + i;
-        const HalfEdgeId f = mesh_.twin(e);
-        if (f == kNone || f < e || mesh_.is_constrained(e) || !mesh_.is_real(tri_of(f))) continue;
+        const HalfEdgeId f = real_twin(mesh_, e);
+        if (f == kNone || f < e || mesh_.is_constrained(e)) continue;
         const Point& a = mesh_.point(mesh_.origin(e));
         const Point& b = mesh_.point(mesh_.dest(e));
         const Point& c = mesh_.point(mesh_.origin(prev_edge(e)));
@@ -354,8 +355,8 @@ class Checker {
         for (int i = 0; i < 3; ++i) {
           const HalfEdgeId e = 3 * t + i;
           if (!mesh_.is_constrained(e)) continue;
-          const HalfEdgeId f = mesh_.twin(e);
-          if (f != kNone && f < e && mesh_.is_real(tri_of(f))) continue;  // counted from the other half
+          const HalfEdgeId f = real_twin(mesh_, e);
+          if (f != kNone && f < e) continue;  // counted from the other half
           emit(mesh_.origin(e), mesh_.dest(e));
         }
       }

@@ -8,16 +8,11 @@
 #include <vector>
 
 #include "deltamesh/predicates.hpp"
+#include "mesh/edge_rules.hpp"
 
 namespace deltamesh {
 
 namespace {
-
-// The twin of e when it lies in a live real triangle, else kNone.
-HalfEdgeId real_twin(const Mesh& m, HalfEdgeId e) {
-  const HalfEdgeId f = m.twin(e);
-  return f == kNone || !m.is_real(tri_of(f)) ? kNone : f;
-}
 
 Point circumcentre(const Point& a, const Point& b, const Point& c) {
   const double bx = b.x - a.x, by = b.y - a.y;

@@ -9,8 +9,10 @@
 #include <string_view>
 #include <vector>
 
+#include "core/angles.hpp"
 #include "deltamesh/mesh.hpp"
 #include "io/atomic_file.hpp"
+#include "mesh/edge_rules.hpp"
 
 namespace deltamesh::io {
 
@@ -95,11 +97,8 @@ inline TriangleOrder live_triangles(const Mesh& m) {
   return order;
 }
 
-// The twin of e if it lies in a live real triangle, else kNone (a boundary).
-inline HalfEdgeId real_twin(const Mesh& m, HalfEdgeId e) {
-  const HalfEdgeId f = m.twin(e);
-  return f == kNone || !m.is_real(tri_of(f)) ? kNone : f;
-}
+using ::deltamesh::real_twin;
+using ::deltamesh::smallest_angle_deg;
 
 // Triangle attribute 0 rounded, 0 without attributes.
 inline long long triangle_region(const Mesh& m, TriId t) {
@@ -108,30 +107,6 @@ inline long long triangle_region(const Mesh& m, TriId t) {
   const std::vector<double>& a = m.triangle_attributes();
   if (i >= a.size() || !std::isfinite(a[i])) return 0;
   return std::llround(std::clamp(a[i], -9.0e15, 9.0e15));
-}
-
-constexpr double kPi = 3.14159265358979323846;
-
-// Smallest interior angle in degrees (the one opposite the shortest edge,
-// computed with atan2 for accuracy near 0). 0 for a degenerate triangle.
-inline double smallest_angle_deg(const Point& a, const Point& b, const Point& c) {
-  const double ab = std::hypot(b.x - a.x, b.y - a.y);
-  const double bc = std::hypot(c.x - b.x, c.y - b.y);
-  const double ca = std::hypot(a.x - c.x, a.y - c.y);
-  const Point *apex, *p, *q;
-  if (ab <= bc && ab <= ca) {
-    apex = &c, p = &a, q = &b;
-  } else if (bc <= ca) {
-    apex = &a, p = &b, q = &c;
-  } else {
-    apex = &b, p = &c, q = &a;
-  }
-  const double ux = p->x - apex->x, uy = p->y - apex->y;
-  const double vx = q->x - apex->x, vy = q->y - apex->y;
-  const double cross = std::fabs(ux * vy - uy * vx);
-  const double dot = ux * vx + uy * vy;
-  if (cross == 0.0 && dot == 0.0) return 0.0;
-  return std::atan2(cross, dot) * 180.0 / kPi;
 }
 
 inline double triangle_area(const Point& a, const Point& b, const Point& c) {
@@ -149,36 +124,21 @@ struct LineEdge {
 // boundary and 0 inside (Triangle's rule, as write_edge applies it).
 inline std::vector<LineEdge> boundary_and_segment_edges(const Mesh& m) {
   std::vector<LineEdge> out;
-  const std::size_t n = m.num_triangle_slots();
-  for (TriId t = 0; t < n; ++t) {
-    if (!m.is_real(t)) continue;
-    for (HalfEdgeId e = 3 * t; e < 3 * t + 3; ++e) {
-      const HalfEdgeId tw = real_twin(m, e);
-      if (tw != kNone && tw < e) continue;
-      const bool segment = m.is_constrained(e) || (tw != kNone && m.is_constrained(tw));
-      if (tw != kNone && !segment) continue;
-      int marker = m.edge_marker(e);
-      if (marker == 0 && tw != kNone) marker = m.edge_marker(tw);
-      out.push_back({e, marker != 0 ? marker : (tw == kNone ? 1 : 0)});
-    }
-  }
+  for_each_edge(m, [&](HalfEdgeId e, bool boundary) {
+    if (!boundary && !is_segment_edge(m, e)) return;
+    out.push_back({e, edge_output_marker(m, e, boundary ? kNone : m.twin(e))});
+  });
   return out;
 }
 
-// Per vertex: its marker from the input when the mesh has markers, otherwise
-// 1 on the boundary and 0 elsewhere (what write_node does).
+// Per vertex the marker write_node writes (vertex_output_marker).
 inline std::vector<int> vertex_output_markers(const Mesh& m) {
   const std::size_t nv = m.num_vertices();
-  const std::vector<int>& given = m.vertex_markers();
-  if (given.size() >= nv) return std::vector<int>(given.begin(), given.begin() + static_cast<std::ptrdiff_t>(nv));
-  std::vector<int> on(nv, 0);
-  const std::size_t n = m.num_triangle_slots();
-  for (TriId t = 0; t < n; ++t) {
-    if (!m.is_real(t)) continue;
-    for (HalfEdgeId e = 3 * t; e < 3 * t + 3; ++e)
-      if (real_twin(m, e) == kNone) on[m.origin(e)] = on[m.dest(e)] = 1;
-  }
-  return on;
+  std::vector<std::uint8_t> on_boundary;
+  if (m.vertex_markers().size() < nv) on_boundary = boundary_vertices(m);
+  std::vector<int> out(nv);
+  for (VertexId v = 0; v < nv; ++v) out[v] = vertex_output_marker(m, v, on_boundary);
+  return out;
 }
 
 }  // namespace deltamesh::io

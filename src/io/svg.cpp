@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "core/angles.hpp"
 #include "deltamesh/version.hpp"
 #include "deltamesh/voronoi.hpp"
 #include "io/atomic_file.hpp"
@@ -25,7 +26,6 @@ namespace deltamesh {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 
 struct Bucket {
   double below;  // smallest angle (degrees) upper bound, exclusive
@@ -48,29 +48,6 @@ std::size_t bucket_of(double angle_deg) {
   std::size_t b = 0;
   while (b + 1 < kBuckets.size() && !(angle_deg < kBuckets[b].below)) ++b;
   return b;
-}
-
-// Smallest angle of triangle (a, b, c) in degrees: the one opposite the
-// shortest edge. 0 for a degenerate triangle.
-double smallest_angle(const Point& a, const Point& b, const Point& c) {
-  const double ab = std::hypot(b.x - a.x, b.y - a.y);
-  const double bc = std::hypot(c.x - b.x, c.y - b.y);
-  const double ca = std::hypot(a.x - c.x, a.y - c.y);
-  // Apex: the vertex opposite the shortest edge.
-  const Point *apex, *p, *q;
-  if (ab <= bc && ab <= ca) {
-    apex = &c, p = &a, q = &b;
-  } else if (bc <= ca) {
-    apex = &a, p = &b, q = &c;
-  } else {
-    apex = &b, p = &c, q = &a;
-  }
-  const double ux = p->x - apex->x, uy = p->y - apex->y;
-  const double vx = q->x - apex->x, vy = q->y - apex->y;
-  const double cross = std::fabs(ux * vy - uy * vx);
-  const double dot = ux * vx + uy * vy;
-  if (cross == 0.0 && dot == 0.0) return 0.0;
-  return std::atan2(cross, dot) * 180.0 / kPi;
 }
 
 std::string xml_escape(std::string_view s) {
@@ -203,7 +180,7 @@ void write_svg(const Mesh& mesh, const std::string& path, const SvgOptions& opt)
     if (!mesh.is_real(t)) continue;
     const auto tri = mesh.triangle(t);
     const Point &a = pt(tri[0]), &b = pt(tri[1]), &c = pt(tri[2]);
-    const double angle = smallest_angle(a, b, c);
+    const double angle = smallest_angle_deg(a, b, c);
     min_angle = std::min(min_angle, angle);
     edge_px_sum += std::hypot(b.x - a.x, b.y - a.y) * scale;
     const std::size_t k = opt.shade_by_quality ? bucket_of(angle) : 0;

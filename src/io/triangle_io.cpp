@@ -18,6 +18,7 @@
 #include "deltamesh/version.hpp"
 #include "io/atomic_file.hpp"
 #include "io/text_reader.hpp"
+#include "mesh/edge_rules.hpp"
 
 namespace deltamesh {
 
@@ -273,32 +274,6 @@ class OutBuffer {
   std::size_t n_ = 0;
 };
 
-// The twin of e if it lies in a live real triangle, else kNone (a boundary).
-HalfEdgeId real_twin(const Mesh& m, HalfEdgeId e) {
-  const HalfEdgeId f = m.twin(e);
-  return f == kNone || !m.is_real(tri_of(f)) ? kNone : f;
-}
-
-bool constrained(const Mesh& m, HalfEdgeId e) {
-  if (m.is_constrained(e)) return true;
-  const HalfEdgeId f = real_twin(m, e);
-  return f != kNone && m.is_constrained(f);
-}
-
-// The boundary marker written for an edge, by Triangle's documented rule:
-// the marker of the segment it belongs to when that is nonzero; otherwise 1
-// on the mesh boundary (holes included); otherwise 0, for interior segments
-// with marker 0 too.
-int edge_output_marker(const Mesh& m, HalfEdgeId e, bool boundary) {
-  int marker = m.edge_marker(e);
-  if (marker == 0) {
-    const HalfEdgeId tw = real_twin(m, e);
-    if (tw != kNone) marker = m.edge_marker(tw);
-  }
-  if (marker != 0) return marker;
-  return boundary ? 1 : 0;
-}
-
 // Output numbering of live real triangles (dead and ghost slots skipped).
 struct TriNumbering {
   std::vector<TriId> id;  // slot -> 0-based output index, kNone if skipped; empty: identity
@@ -316,31 +291,6 @@ TriNumbering number_triangles(const Mesh& m) {
   for (TriId t = 0; t < slots; ++t)
     if (m.is_real(t)) num.id[t] = next++;
   return num;
-}
-
-// 1 for vertices on an edge of the mesh boundary, 0 otherwise.
-std::vector<std::uint8_t> boundary_vertices(const Mesh& m) {
-  std::vector<std::uint8_t> on(m.num_vertices(), 0);
-  const std::size_t slots = m.num_triangle_slots();
-  for (TriId t = 0; t < slots; ++t) {
-    if (!m.is_real(t)) continue;
-    for (HalfEdgeId e = 3 * t; e < 3 * t + 3; ++e)
-      if (real_twin(m, e) == kNone) on[m.origin(e)] = on[m.dest(e)] = 1;
-  }
-  return on;
-}
-
-// Calls f(e) once per edge (half-edge e with no real twin, or e < twin).
-template <class F>
-void for_each_edge(const Mesh& m, F&& f) {
-  const std::size_t slots = m.num_triangle_slots();
-  for (TriId t = 0; t < slots; ++t) {
-    if (!m.is_real(t)) continue;
-    for (HalfEdgeId e = 3 * t; e < 3 * t + 3; ++e) {
-      const HalfEdgeId tw = real_twin(m, e);
-      if (tw == kNone || e < tw) f(e, tw == kNone);
-    }
-  }
 }
 
 }  // namespace
@@ -573,7 +523,7 @@ void write_node(const Mesh& mesh, const std::string& path, const TriangleWriteOp
       const std::size_t i = v * na + k;
       out.field_double(i < attrs.size() ? attrs[i] : 0.0);
     }
-    if (opt.write_markers) out.field_int(v < markers.size() ? markers[v] : on_boundary[v]);
+    if (opt.write_markers) out.field_int(vertex_output_marker(mesh, static_cast<VertexId>(v), on_boundary));
     out.put('\n');
   }
   out.finish();
@@ -622,7 +572,7 @@ void write_edge(const Mesh& mesh, const std::string& path, const TriangleWriteOp
     out.put_int(id++);
     out.field_int(static_cast<long long>(mesh.origin(e)) + opt.first_index);
     out.field_int(static_cast<long long>(mesh.dest(e)) + opt.first_index);
-    if (opt.write_markers) out.field_int(edge_output_marker(mesh, e, boundary));
+    if (opt.write_markers) out.field_int(edge_output_marker(mesh, e, boundary ? kNone : mesh.twin(e)));
     out.put('\n');
   });
   out.finish();
@@ -651,9 +601,9 @@ void write_neigh(const Mesh& mesh, const std::string& path, const TriangleWriteO
 void write_poly(const Mesh& mesh, const std::string& path, const TriangleWriteOptions& opt) {
   bool any_constrained = false;
   if (mesh.has_edge_flags())
-    for_each_edge(mesh, [&](HalfEdgeId e, bool) { any_constrained = any_constrained || constrained(mesh, e); });
+    for_each_edge(mesh, [&](HalfEdgeId e, bool) { any_constrained = any_constrained || is_segment_edge(mesh, e); });
   const auto is_segment = [&](HalfEdgeId e, bool boundary) {
-    return any_constrained ? constrained(mesh, e) : boundary;
+    return any_constrained ? is_segment_edge(mesh, e) : boundary;
   };
 
   io::AtomicFile file(path);
@@ -670,7 +620,7 @@ void write_poly(const Mesh& mesh, const std::string& path, const TriangleWriteOp
     out.put_int(id++);
     out.field_int(static_cast<long long>(mesh.origin(e)) + opt.first_index);
     out.field_int(static_cast<long long>(mesh.dest(e)) + opt.first_index);
-    if (opt.write_markers) out.field_int(edge_output_marker(mesh, e, boundary));
+    if (opt.write_markers) out.field_int(edge_output_marker(mesh, e, boundary ? kNone : mesh.twin(e)));
     out.put('\n');
   });
   // Holes and regions as given (the input's, for a .poly that describes the

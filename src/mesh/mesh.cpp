@@ -4,8 +4,19 @@
 #include <cassert>
 
 #include "deltamesh/predicates.hpp"
+#include "mesh/flip.hpp"
+#include "mesh/locate.hpp"
+#include "mesh/split.hpp"
 
 namespace deltamesh {
+
+namespace {
+// x's twin becomes y, and y's x when y exists.
+void relink(std::vector<HalfEdgeId>& twin, HalfEdgeId x, HalfEdgeId y) {
+  twin[x] = y;
+  if (y != kNone) twin[y] = x;
+}
+}  // namespace
 
 HalfEdgeId Mesh::find_edge(VertexId a, VertexId b) const {
   HalfEdgeId found = kNone;
@@ -95,165 +106,47 @@ void Mesh::set_edge_marker(HalfEdgeId e, int marker) {
 }
 
 HalfEdgeId Mesh::flip(HalfEdgeId e) {
-  const HalfEdgeId f = twin_[e];
-  assert(f != kNone);
-  const TriId t1 = tri_of(e), t2 = tri_of(f);
+  assert(twin_[e] != kNone);
+  const TriId t1 = tri_of(e), t2 = tri_of(twin_[e]);
   note_removed(t1);
   note_removed(t2);
-  const HalfEdgeId e0 = e, e1 = next_edge(e), e2 = prev_edge(e);
-  const HalfEdgeId f0 = f, f1 = next_edge(f), f2 = prev_edge(f);
-  const VertexId a = tri_v_[e0], b = tri_v_[e1], c = tri_v_[e2], d = tri_v_[f2];
-  const HalfEdgeId tw_bc = twin_[e1], tw_ca = twin_[e2], tw_ad = twin_[f1], tw_db = twin_[f2];
-  // t1 becomes (c, a, d), t2 becomes (d, b, c).
-  tri_v_[e0] = c;
-  tri_v_[e1] = a;
-  tri_v_[e2] = d;
-  tri_v_[f0] = d;
-  tri_v_[f1] = b;
-  tri_v_[f2] = c;
-  auto relink = [&](HalfEdgeId x, HalfEdgeId y) {
-    twin_[x] = y;
-    if (y != kNone) twin_[y] = x;
-  };
-  relink(e0, tw_ca);
-  relink(e1, tw_ad);
-  relink(f0, tw_db);
-  relink(f1, tw_bc);
-  twin_[e2] = f2;
-  twin_[f2] = e2;
-  if (!edge_flags_.empty()) {
-    const std::uint8_t fl_bc = edge_flags_[e1], fl_ca = edge_flags_[e2], fl_ad = edge_flags_[f1],
-                       fl_db = edge_flags_[f2];
-    edge_flags_[e0] = fl_ca;
-    edge_flags_[e1] = fl_ad;
-    edge_flags_[e2] = 0;
-    edge_flags_[f0] = fl_db;
-    edge_flags_[f1] = fl_bc;
-    edge_flags_[f2] = 0;
-  }
-  if (!edge_markers_.empty()) {
-    const int m_bc = edge_markers_[e1], m_ca = edge_markers_[e2], m_ad = edge_markers_[f1], m_db = edge_markers_[f2];
-    edge_markers_[e0] = m_ca;
-    edge_markers_[e1] = m_ad;
-    edge_markers_[e2] = 0;
-    edge_markers_[f0] = m_db;
-    edge_markers_[f1] = m_bc;
-    edge_markers_[f2] = 0;
-  }
-  // Keep each vertex's out-edge pointing at an edge that plays the same role.
-  if (a != kInfinite && (vert_edge_[a] == e0 || vert_edge_[a] == f1)) vert_edge_[a] = e1;
-  if (b != kInfinite && (vert_edge_[b] == e1 || vert_edge_[b] == f0)) vert_edge_[b] = f1;
-  if (c != kInfinite && vert_edge_[c] == e2) vert_edge_[c] = e0;
-  if (d != kInfinite && vert_edge_[d] == f2) vert_edge_[d] = f0;
+  const HalfEdgeId cd = detail::flip_arrays<detail::kCarryAll>(detail::MeshArrays::of(*this), e);
   note_added(t1);
   note_added(t2);
-  return f2;
+  return cd;
 }
 
 HalfEdgeId Mesh::split_triangle(TriId t, VertexId p) {
-  const HalfEdgeId e0 = 3 * t, e1 = e0 + 1, e2 = e0 + 2;
-  const VertexId a = tri_v_[e0], b = tri_v_[e1], c = tri_v_[e2];
-  const HalfEdgeId tw_bc = twin_[e1], tw_ca = twin_[e2];
-  const std::uint8_t fl_bc = edge_flags(e1), fl_ca = edge_flags(e2);
-  const int m_bc = edge_marker(e1), m_ca = edge_marker(e2);
+  const VertexId a = tri_v_[3 * t], b = tri_v_[3 * t + 1], c = tri_v_[3 * t + 2];
   note_removed(t);
-  const TriId t1 = add_triangle(b, c, p);
+  const TriId t1 = add_triangle(b, c, p);  // (counted with their final corners)
   const TriId t2 = add_triangle(c, a, p);
-  tri_v_[e2] = p;  // t becomes (a, b, p)
+  const HalfEdgeId r = detail::split_triangle_arrays<detail::kCarryAll>(detail::MeshArrays::of(*this), t, p, t1, t2);
   note_added(t);
-  const HalfEdgeId g0 = 3 * t1, h0 = 3 * t2;
-  auto relink = [&](HalfEdgeId x, HalfEdgeId y) {
-    twin_[x] = y;
-    if (y != kNone) twin_[y] = x;
-  };
-  relink(g0, tw_bc);
-  relink(h0, tw_ca);
-  link(e1, g0 + 2);
-  link(g0 + 1, h0 + 2);
-  link(h0 + 1, e2);
-  if (!edge_flags_.empty()) {
-    edge_flags_[g0] = fl_bc;
-    edge_flags_[h0] = fl_ca;
-    edge_flags_[e1] = edge_flags_[e2] = 0;
-  }
-  if (!edge_markers_.empty()) {
-    edge_markers_[g0] = m_bc;
-    edge_markers_[h0] = m_ca;
-    edge_markers_[e1] = edge_markers_[e2] = 0;
-  }
   copy_triangle_data(t, t1);
   copy_triangle_data(t, t2);
-  if (b != kInfinite && vert_edge_[b] == e1) vert_edge_[b] = g0;
-  if (c != kInfinite && vert_edge_[c] == e2) vert_edge_[c] = h0;
-  if (p != kInfinite) vert_edge_[p] = e2;
-  return e2;
+  return r;
 }
 
 HalfEdgeId Mesh::split_edge(HalfEdgeId e, VertexId p) {
   const HalfEdgeId f = twin_[e];
-  const HalfEdgeId e0 = e, e1 = next_edge(e), e2 = prev_edge(e);
-  const VertexId a = tri_v_[e0], b = tri_v_[e1], c = tri_v_[e2];
-  const HalfEdgeId tw_bc = twin_[e1];
-  const std::uint8_t fl_e = edge_flags(e0), fl_bc = edge_flags(e1);
-  const int m_e = edge_marker(e0), m_bc = edge_marker(e1);
   const TriId t1 = tri_of(e);
+  const VertexId a = tri_v_[e], b = tri_v_[next_edge(e)], c = tri_v_[prev_edge(e)];
   note_removed(t1);
-  // (a, b, c) becomes (a, p, c) + new (p, b, c).
-  tri_v_[e1] = p;
-  note_added(t1);
   const TriId t3 = add_triangle(p, b, c);
-  const HalfEdgeId g0 = 3 * t3;
-  twin_[g0 + 1] = tw_bc;
-  if (tw_bc != kNone) twin_[tw_bc] = g0 + 1;
-  link(e1, g0 + 2);
+  TriId t2 = kNone, t4 = kNone;
+  if (f != kNone) {
+    t2 = tri_of(f);
+    note_removed(t2);
+    t4 = add_triangle(p, a, tri_v_[prev_edge(f)]);
+  }
+  const HalfEdgeId g0 = detail::split_edge_arrays<detail::kCarryAll>(detail::MeshArrays::of(*this), e, p, t3, t4);
+  note_added(t1);
   copy_triangle_data(t1, t3);
-  if (!edge_flags_.empty()) {
-    edge_flags_[g0] = fl_e;
-    edge_flags_[g0 + 1] = fl_bc;
-    edge_flags_[e1] = edge_flags_[g0 + 2] = 0;
+  if (f != kNone) {
+    note_added(t2);
+    copy_triangle_data(t2, t4);
   }
-  if (!edge_markers_.empty()) {
-    edge_markers_[g0] = m_e;
-    edge_markers_[g0 + 1] = m_bc;
-    edge_markers_[e1] = edge_markers_[g0 + 2] = 0;
-  }
-  if (b != kInfinite && vert_edge_[b] == e1) vert_edge_[b] = g0 + 1;
-  if (p != kInfinite) vert_edge_[p] = g0;
-  if (f == kNone) {
-    twin_[e0] = kNone;
-    twin_[g0] = kNone;
-    return g0;
-  }
-  // Other side (b, a, d) becomes (b, p, d) + new (p, a, d).
-  const HalfEdgeId f0 = f, f1 = next_edge(f);
-  const HalfEdgeId tw_ad = twin_[f1];
-  const std::uint8_t fl_f = edge_flags(f0), fl_ad = edge_flags(f1);
-  const int m_f = edge_marker(f0), m_ad = edge_marker(f1);
-  const VertexId d = tri_v_[prev_edge(f)];
-  const TriId t2 = tri_of(f);
-  note_removed(t2);
-  tri_v_[f1] = p;
-  note_added(t2);
-  const TriId t4 = add_triangle(p, a, d);
-  const HalfEdgeId h0 = 3 * t4;
-  twin_[h0 + 1] = tw_ad;
-  if (tw_ad != kNone) twin_[tw_ad] = h0 + 1;
-  link(f1, h0 + 2);
-  copy_triangle_data(t2, t4);
-  link(e0, h0);
-  link(g0, f0);
-  if (!edge_flags_.empty()) {
-    edge_flags_[h0] = fl_f;
-    edge_flags_[h0 + 1] = fl_ad;
-    edge_flags_[f1] = edge_flags_[h0 + 2] = 0;
-  }
-  if (!edge_markers_.empty()) {
-    edge_markers_[h0] = m_f;
-    edge_markers_[h0 + 1] = m_ad;
-    edge_markers_[f1] = edge_markers_[h0 + 2] = 0;
-  }
-  if (a != kInfinite && vert_edge_[a] == f1) vert_edge_[a] = h0 + 1;
-  (void)d;
   return g0;
 }
 
@@ -274,12 +167,8 @@ void Mesh::remove_degree3_vertex(VertexId v) {
   note_removed(t0);
   tri_v_[e0] = c;  // (c, a, b)
   note_added(t0);
-  auto relink = [&](HalfEdgeId x, HalfEdgeId y) {
-    twin_[x] = y;
-    if (y != kNone) twin_[y] = x;
-  };
-  relink(e0, tw_ca);
-  relink(e2, tw_bc);
+  relink(twin_, e0, tw_ca);
+  relink(twin_, e2, tw_bc);
   if (!edge_flags_.empty()) {
     edge_flags_[e0] = fl_ca;
     edge_flags_[e2] = fl_bc;
@@ -321,17 +210,13 @@ void Mesh::unsplit_edge(HalfEdgeId g) {
     fl_ad = edge_flags(k2);
     m_ad = edge_marker(k2);
   }
-  auto relink = [&](HalfEdgeId x, HalfEdgeId y) {
-    twin_[x] = y;
-    if (y != kNone) twin_[y] = x;
-  };
   remove_triangle(tri_of(g));
   if (f != kNone) remove_triangle(tri_of(k0));
   const TriId t1 = tri_of(h0);
   note_removed(t1);
   tri_v_[h0] = b;  // (b, c, a)
   note_added(t1);
-  relink(h0, tw_bc);
+  relink(twin_, h0, tw_bc);
   if (!edge_flags_.empty()) edge_flags_[h0] = fl_bc;
   if (!edge_markers_.empty()) edge_markers_[h0] = m_bc;
   twin_[h2] = kNone;
@@ -340,7 +225,7 @@ void Mesh::unsplit_edge(HalfEdgeId g) {
     note_removed(t3);
     tri_v_[f1] = a;  // (b, a, d)
     note_added(t3);
-    relink(f1, tw_ad);
+    relink(twin_, f1, tw_ad);
     if (!edge_flags_.empty()) edge_flags_[f1] = fl_ad;
     if (!edge_markers_.empty()) edge_markers_[f1] = m_ad;
     link(h2, f);
@@ -355,18 +240,7 @@ void Mesh::unsplit_edge(HalfEdgeId g) {
   compacted_ = false;
 }
 
-namespace {
-// Small deterministic generator for the walk's random edge order.
-inline std::uint32_t walk_random(std::uint64_t& s) {
-  s ^= s << 13;
-  s ^= s >> 7;
-  s ^= s << 17;
-  return static_cast<std::uint32_t>(s >> 32);
-}
-}  // namespace
-
 Location Mesh::locate(const Point& p, TriId start) const {
-  Location loc;
   const std::size_t slots = num_triangle_slots();
   if (start == kNone || start >= slots || is_dead(start)) {
     start = kNone;
@@ -375,88 +249,13 @@ Location Mesh::locate(const Point& p, TriId start) const {
         start = t;
         break;
       }
-    if (start == kNone) return loc;
+    if (start == kNone) return Location{};
   }
-  TriId t = start;
-  if (is_ghost(t)) {
-    // Step to the real triangle across the ghost's real edge.
-    for (int i = 0; i < 3; ++i) {
-      const HalfEdgeId e = 3 * t + i;
-      if (tri_v_[e] != kInfinite && tri_v_[next_edge(e)] != kInfinite) {
-        t = tri_of(twin_[e]);
-        break;
-      }
-    }
-  }
-  std::uint64_t rng = 0x9E3779B97F4A7C15ull ^ static_cast<std::uint64_t>(t);
+  const TriId t = detail::real_triangle_near(tri_v_.data(), twin_.data(), start);
   // A visibility walk visits at most every triangle once per pass when it
   // cannot cycle; the bound only guards against a corrupt mesh.
-  for (std::size_t steps = 0; steps <= 4 * slots + 16; ++steps) {
-    const HalfEdgeId base = 3 * t;
-    const std::uint32_t r = walk_random(rng) % 3;
-    HalfEdgeId exit = kNone;
-    int zeros = 0;
-    HalfEdgeId zero_edge = kNone;
-    for (std::uint32_t k = 0; k < 3; ++k) {
-      const HalfEdgeId e = base + (r + k) % 3;
-      const Point& a = points_[tri_v_[e]];
-      const Point& b = points_[tri_v_[next_edge(e)]];
-      const double o = orient2d(a, b, p);
-      if (o < 0) {
-        exit = e;
-        break;
-      }
-      if (o == 0) {
-        ++zeros;
-        zero_edge = e;
-      }
-    }
-    if (exit == kNone) {
-      if (zeros == 0) {
-        loc.kind = Location::Kind::InTriangle;
-        loc.tri = t;
-        return loc;
-      }
-      if (zeros == 1) {
-        loc.kind = Location::Kind::OnEdge;
-        loc.tri = t;
-        loc.edge = zero_edge;
-        return loc;
-      }
-      // Two zero orientations: p is the vertex the two edges share.
-      for (int i = 0; i < 3; ++i) {
-        if (points_[tri_v_[base + i]] == p) {
-          loc.kind = Location::Kind::OnVertex;
-          loc.tri = t;
-          loc.vertex = tri_v_[base + i];
-          loc.edge = base + i;
-          return loc;
-        }
-      }
-      loc.kind = Location::Kind::OnEdge;  // unreachable for a valid mesh
-      loc.tri = t;
-      loc.edge = zero_edge;
-      return loc;
-    }
-    const HalfEdgeId across = twin_[exit];
-    if (across == kNone) {  // compacted mesh: p is outside the domain here
-      loc.kind = Location::Kind::Outside;
-      loc.tri = t;
-      loc.edge = exit;
-      return loc;
-    }
-    const TriId u = tri_of(across);
-    if (is_ghost(u)) {
-      loc.kind = Location::Kind::Outside;
-      loc.tri = u;
-      loc.edge = across;
-      return loc;
-    }
-    t = u;
-  }
-  loc.kind = Location::Kind::Outside;
-  loc.tri = kNone;
-  return loc;
+  detail::RandomRotationOrder order{0x9E3779B97F4A7C15ull ^ static_cast<std::uint64_t>(t)};
+  return detail::visibility_walk(tri_v_.data(), twin_.data(), points_.data(), p, t, order, 4 * slots + 16).loc;
 }
 
 void Mesh::compact() {
