@@ -70,6 +70,27 @@ double diametral_dot(const Point& a, const Point& b, const Point& p) {
   return detail::signed_estimate(n, sum);
 }
 
+// The coarsest multiple of a power of two in the middle of [lo, hi], at
+// least 1 - 1/sqrt2 of the way from either end (for lo = 0, the concentric
+// shell). Splits of the segments around one apex then all fall on one
+// nested set of radii: vertices of neighbouring segments sit at equal radii
+// or as far apart as the subsegments they split. Midpoints of subsegments
+// of unequal segments drift into pairs of radii far closer than the local
+// feature size; the short edges between them make skinny triangles whose
+// splits, mirrored around the apex, cascade (hubs of many spokes of random
+// lengths ran to the budget).
+double grid_radius(double lo, double hi) {
+  const double margin = (1.0 - 0.5 * std::numbers::sqrt2) * (hi - lo);
+  const double l = lo + margin, h = hi - margin;
+  int ex;
+  std::frexp(hi, &ex);  // hi < 2^ex
+  for (double step = std::ldexp(1.0, ex); step > 0; step *= 0.5) {
+    const double r = std::floor(h / step) * step;
+    if (r >= l) return r;
+  }
+  return 0.5 * (lo + hi);
+}
+
 inline double dist2(const Point& a, const Point& b) {
   const double dx = a.x - b.x, dy = a.y - b.y;
   return dx * dx + dy * dy;
@@ -984,6 +1005,28 @@ Point Refiner::split_point(VertexId a, VertexId b) const {
     if (half > shell * std::numbers::sqrt2) shell *= 2;
     const double f = shell / len;
     return {apex.x + (other.x - apex.x) * f, apex.y + (other.y - apex.y) * f};
+  }
+  // Subsegments further out, on a segment in a narrow wedge (one with
+  // mirrored partners): on the grid of radii around its apex.
+  if (opt_.small_angle_protection && !(ain && bin)) {
+    const std::uint32_t s = seg_of_[ain ? b : a];
+    if (s != kNone) {
+      VertexId apex = kNone;
+      double nearest = INFINITY;
+      for (int end = 0; end < 2; ++end) {
+        const VertexId w = segs_[s][end];
+        if (w == a || w == b || partners_[2 * s + end][0] == kNone) continue;
+        const double d = std::min(dist2(pts_[w], A), dist2(pts_[w], B));
+        if (d < nearest) nearest = d, apex = w;
+      }
+      if (apex != kNone) {
+        const Point& P = pts_[apex];
+        const Point& O = pts_[segs_[s][0] == apex ? segs_[s][1] : segs_[s][0]];
+        const double ra = std::sqrt(dist2(P, A)), rb = std::sqrt(dist2(P, B));
+        const double f = grid_radius(std::min(ra, rb), std::max(ra, rb)) / std::sqrt(dist2(P, O));
+        return {P.x + (O.x - P.x) * f, P.y + (O.y - P.y) * f};
+      }
+    }
   }
   return {0.5 * (A.x + B.x), 0.5 * (A.y + B.y)};
 }
