@@ -1849,7 +1849,7 @@ void Refiner::queue_encroached() {
 void Refiner::refine_loop(ProgressReporter& progress) {
   const bool timed = opt_.time_limit_seconds > 0;
   if (watch_) {
-    check_interval_ = std::max<std::size_t>(512, pts_.size() / 4);
+    check_interval_ = std::max<std::size_t>(256, pts_.size() / 8);
     next_check_ = st_.steiner_points + check_interval_;
     window_start_ = pts_.size();
   }
@@ -1939,8 +1939,8 @@ void Refiner::checkpoint() {
     ++bad;
     low = std::min(low, ev.sin2);
   }
-  const bool fewer = bad < best_bad_ - best_bad_ / 10 || best_bad_ == SIZE_MAX;
-  const bool higher = low > best_sin2_ * 1.001;
+  const bool fewer = bad < best_bad_ - best_bad_ / 4 || best_bad_ == SIZE_MAX;
+  const bool higher = low > best_sin2_ * 1.02;  // about half a degree near 35°
   best_bad_ = std::min(best_bad_, bad);
   best_sin2_ = std::max(best_sin2_, low);
   const bool capped = st_.steiner_points >= watch_cap_;
@@ -2019,7 +2019,8 @@ std::string RefineStats::summary() const {
     out << " (" << min_angle_deg << "° out of reach: no progress while half the last Steiner points went within "
         << stall_radius << " of (" << stall_x << ", " << stall_y << "); " << reached_angle_deg
         << "° reached outside small input angles";
-    if (discarded_steiner) out << ", the mesh refined to " << kept_angle_deg << "° kept";
+    if (discarded_steiner)
+      out << ", the mesh refined to " << kept_angle_deg << "° kept, " << discarded_steiner << " later Steiner points dropped";
     out << ")";
   } else if (budget_exhausted) {
     out << " (Steiner budget reached)";
