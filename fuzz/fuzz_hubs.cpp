@@ -146,6 +146,14 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   static const bool verbose = std::getenv("DELTAMESH_FUZZ_VERBOSE") != nullptr;
   if (verbose) std::fprintf(stderr, "--- %s\n--- input.poly:\n%s", what.c_str(), fz::to_poly(g).c_str());
 
+  // Bounded work is judged where all segments meet at one vertex. Crossings
+  // of nearly parallel spokes (two hubs, or bunched lines through one
+  // vertex, whose crossings rounding scatters) leave vertex-disjoint
+  // segments a hair apart along their whole length: the local feature size
+  // itself is tiny there and Ruppert-style refinement needs ~length/gap
+  // points (no small-angle rule applies; a known limit). Those inputs are
+  // checked for validity and consistent counts only.
+  const bool judged = !two && !(cross && bunch > 0);
   bool timed_out = false;
   auto run = [&](double angle, dm::RefineStats& rs) {
     dm::Mesh mesh;
@@ -165,7 +173,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     // and more: about 100 Steiner points per vertex); a cascade runs into it
     // (thousands per vertex). Above 34° the default budget, so that only the
     // progress watch stops the stage beyond 34°.
-    if (angle <= dm::kAutomaticBudgetAngle) ro.max_steiner = 200 * mesh.num_vertices() + 20000;
+    if (angle <= dm::kAutomaticBudgetAngle || !judged)
+      ro.max_steiner = judged ? 200 * mesh.num_vertices() + 20000 : 20 * mesh.num_vertices() + 5000;
     ro.time_limit_seconds = 60;  // a safety net for slow (sanitizer) builds: such a run is not judged
     try {
       rs = dm::refine(mesh, ro);
@@ -182,7 +191,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       timed_out = true;
       return mesh;
     }
-    if (angle <= dm::kAutomaticBudgetAngle) {
+    if (angle <= dm::kAutomaticBudgetAngle && judged) {
       DELTAMESH_FUZZ_CHECK(rs.complete && !rs.budget_exhausted, why);
       DELTAMESH_FUZZ_CHECK(rs.below_bound == rs.below_small_input_angle + rs.below_precision, why);
     }
@@ -191,7 +200,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   dm::RefineStats rs;
   const dm::Mesh mesh = run(bound, rs);
   if (verbose) std::fprintf(stderr, "--- refine result: %s\n", rs.summary().c_str());
-  if (bound > dm::kAutomaticBudgetAngle && mesh.num_triangles() > 0 && !rs.complete && !timed_out) {
+  if (bound > dm::kAutomaticBudgetAngle && judged && mesh.num_triangles() > 0 && !rs.complete && !timed_out) {
     dm::RefineStats r34;
     const dm::Mesh at34 = run(dm::kAutomaticBudgetAngle, r34);
     if (timed_out) return 0;

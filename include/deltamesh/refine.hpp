@@ -86,7 +86,7 @@ inline constexpr std::size_t kAutomaticBudgetPerVertex = 50;
 // Bounds above this are refined in two stages: to this angle first (where
 // refinement ends in practice), then on towards the bound, worst triangles
 // first, while a progress watch sees the number of triangles below it fall
-// or their smallest angle rise (checked every max(512, vertices/4) Steiner
+// or their smallest angle rise (checked every max(256, vertices/8) Steiner
 // points; at most 4 × vertices + 10^4 of them). When the watch stops it,
 // RefineStats::stalled says where, and the first stage's mesh is returned
 // if its smallest angle is larger.
@@ -120,7 +120,9 @@ struct RefineOptions {
   // mesh is Delaunay within each connected region (diametral circles are
   // used whatever `encroachment` says).
   bool conforming_delaunay = false;
-  // §3.6: split segments on concentric shells around input vertices and
+  // §3.6: split segments on concentric shells around input vertices (at a
+  // hub, a vertex of three or more segments with wedges under 10°, every
+  // subsegment on a grid of power-of-two radii around it) and
   // leave alone skinny triangles that sit in small input angles (< 60°),
   // which is what makes refinement terminate on every input. Also left: the
   // skinny triangles of thin channels between the sides of a spike (sides of
