@@ -147,13 +147,14 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   if (verbose) std::fprintf(stderr, "--- %s\n--- input.poly:\n%s", what.c_str(), fz::to_poly(g).c_str());
 
   // Bounded work is judged where all segments meet at one vertex. Crossings
-  // of nearly parallel spokes (two hubs, or bunched lines through one
-  // vertex, whose crossings rounding scatters) leave vertex-disjoint
-  // segments a hair apart along their whole length: the local feature size
-  // itself is tiny there and Ruppert-style refinement needs ~length/gap
-  // points (no small-angle rule applies; a known limit). Those inputs are
-  // checked for validity and consistent counts only.
-  const bool judged = !two && !(cross && bunch > 0);
+  // of nearly parallel segments (two hubs; lines through the vertex that
+  // are bunched or have unequal halves, whose crossings rounding scatters
+  // into clusters of separate vertices) leave vertex-disjoint segments a
+  // hair apart: the local feature size itself is tiny there and
+  // Ruppert-style refinement needs about length/gap points (no small-angle
+  // rule applies; a known limit). Those inputs get the validity and count
+  // checks only.
+  const bool judged = !two && !(cross && (bunch > 0 || lengths != 0));
   bool timed_out = false;
   auto run = [&](double angle, dm::RefineStats& rs) {
     dm::Mesh mesh;
