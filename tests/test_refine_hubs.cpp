@@ -27,6 +27,7 @@
 
 #include "deltamesh/pslg.hpp"
 #include "deltamesh/refine.hpp"
+#include "deltamesh/triangle_io.hpp"
 #include "deltamesh/triangulate.hpp"
 #include "test_refine_util.hpp"
 
@@ -344,6 +345,30 @@ TEST(HubsBeyond, HighBoundsStopWithAMeshAsGoodAs34) {
         EXPECT_NE(st.summary().find("out of reach"), std::string::npos);
         EXPECT_EQ(st.below_bound, st.below_small_input_angle + st.below_out_of_reach + st.below_precision);
       }
+    }
+  }
+}
+
+// A fuzz_hubs input at the edge of what the rules cover: bunches of spokes
+// a few 1e-8 rad wide whose lengths differ by factors up to 2^10. It
+// completes at 20° and 30°; at 33° refinement still cascades around the tips
+// of the short spokes (docs/robustness.md, known limits), so there only a
+// valid mesh within the budget is required.
+TEST(HubsLimit, BunchesWithSpreadLengths) {
+  const dm::Pslg input = dm::read_poly(DELTAMESH_SOURCE_DIR "/tests/regress/refine_hub_bunches_spread_lengths.poly");
+  for (const double q : {20.0, 30.0, 33.0}) {
+    dm::Mesh mesh = dm::triangulate(input);
+    dm::RefineOptions o;
+    o.min_angle_deg = q;
+    o.max_steiner = 30000;
+    o.time_limit_seconds = 20;
+    const dm::RefineStats st = dm::refine(mesh, o);
+    SCOPED_TRACE("q" + std::to_string(q) + ": " + st.summary());
+    dm::test::expect_valid(mesh, false);
+    EXPECT_LE(st.steiner_points, o.max_steiner);
+    if (q <= 30) {
+      EXPECT_TRUE(st.complete);
+      EXPECT_EQ(st.below_bound, st.below_small_input_angle + st.below_precision);
     }
   }
 }
