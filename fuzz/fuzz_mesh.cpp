@@ -1,6 +1,7 @@
 // libFuzzer target: random bytes -> a small PSLG -> triangulate (every CDT
 // method, fill rule and domain option) -> deltamesh::check; then quality
-// refinement under a Steiner budget and a time limit -> check again.
+// refinement under a Steiner budget and a time limit -> check again (bounds
+// up to 40°).
 //
 // A bug is: a crash or sanitizer report; an exception that is not one of the
 // library's typed errors, or an InternalError (a broken invariant);
@@ -216,7 +217,7 @@ void check_refine_stats(const dm::Mesh& mesh, const dm::RefineOptions& ro, const
   DELTAMESH_FUZZ_CHECK(mesh.num_vertices() == rs.input_vertices + rs.steiner_points, what);
   DELTAMESH_FUZZ_CHECK(!(rs.budget_exhausted || rs.time_exhausted) || !rs.complete, what);
   DELTAMESH_FUZZ_CHECK(rs.below_bound == rs.below_small_input_angle + rs.below_segment_protected + rs.below_budget +
-                                             rs.below_precision,
+                                             rs.below_out_of_reach + rs.below_precision,
                        what);
   DELTAMESH_FUZZ_CHECK(rs.too_large_precision <= rs.too_large, what);
   if (rs.complete) {
@@ -368,6 +369,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   static constexpr std::size_t kBudgets[] = {20, 300, 3000, 3000};
   ropt.max_steiner = kBudgets[(f3 >> 4) & 3];
   ropt.time_limit_seconds = 2.0;
+  if ((f3 & 128) && ropt.min_angle_deg == 33.0) ropt.min_angle_deg = 40.0;  // beyond 34°: the staged refinement
   if (verbose)
     std::fprintf(stderr,
                  "--- refine: min_angle=%g max_area=%g steiner=%s encroachment=%s splitting=%d conforming=%d "

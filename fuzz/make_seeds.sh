@@ -17,7 +17,7 @@ for b in "$gen" "$cli"; do
 done
 out=fuzz/corpus
 rm -rf "$out"
-mkdir -p "$out"/{fuzz_node,fuzz_poly,fuzz_ele,fuzz_area,fuzz_geojson,fuzz_mesh,fuzz_insert_segments,fuzz_adapt}
+mkdir -p "$out"/{fuzz_node,fuzz_poly,fuzz_ele,fuzz_area,fuzz_geojson,fuzz_mesh,fuzz_insert_segments,fuzz_adapt,fuzz_hubs}
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 
@@ -195,4 +195,9 @@ seed_bytes_to fuzz_adapt markers_tiny_then_huge.bin 161 11 11 0 15 1 4  0 0 16 0
 # sizes at the vertices with a zero among them: InputError
 seed_bytes_to fuzz_adapt background_bad_size.bin 33 0 24 0 4 2 4  0 0 4 0 4 4 0 4 2 2  0 0 0 0  0 0  5 5 5 5 5 1
 random_seeds fuzz_adapt 13 12 24 160
+# --- fuzz_hubs: bytes read from the end (options, degree, seed, scale),
+# the spoke directions from the front, two bytes each; seeded strings of
+# 20-600 bytes give hubs of every size (the degree falls back to the seed's
+# directions when the bytes run out).
+random_seeds fuzz_hubs 17 16 20 580
 echo "make_seeds: $(find "$out" -type f | wc -l) seeds, $(du -sk "$out" | cut -f1) KiB in $out"

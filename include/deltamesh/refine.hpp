@@ -76,19 +76,27 @@ enum class SegmentSplitting {
 
 // No Steiner budget.
 inline constexpr std::size_t kUnlimited = std::numeric_limits<std::size_t>::max();
-// The default budget: 2·10^6 + 50 × (vertices before refinement) Steiner
-// points up to kAutomaticBudgetAngle (10^6 + 10 × vertices above it, where
-// refinement need not terminate), raised to four times the vertex count an
-// area bound asks for. It bounds memory on adversarial inputs (thousands of
-// tiny input angles) without cutting ordinary refinements short.
+// The default budget (docs/robustness.md, "Budgets"): kAutomaticBudgetBase +
+// kAutomaticBudgetPerVertex × (vertices before refinement) Steiner points,
+// raised to four times the vertex count an area bound asks for. It bounds
+// memory on adversarial inputs without cutting ordinary refinements short.
 inline constexpr std::size_t kAutomaticBudget = kUnlimited - 1;
+inline constexpr std::size_t kAutomaticBudgetBase = 2'000'000;
+inline constexpr std::size_t kAutomaticBudgetPerVertex = 50;
+// Bounds above this are refined in two stages: to this angle first (where
+// refinement ends in practice), then on towards the bound, worst triangles
+// first, while a progress watch sees the number of triangles below it fall
+// or their smallest angle rise (checked every max(256, vertices/8) Steiner
+// points; at most 4 × vertices + 10^4 of them). When the watch stops it,
+// RefineStats::stalled says where, and the first stage's mesh is returned
+// if its smallest angle is larger.
 inline constexpr double kAutomaticBudgetAngle = 34.0;
 
 struct RefineOptions {
   // Triangles with an angle below this are split (Triangle's -q; 0 turns the
   // angle criterion off). Termination is proven up to ~20.7° for the seed's
   // algorithm; up to ~34° it terminates in practice (off-centres reach higher
-  // bounds); beyond, budgets stop it. At most 60°.
+  // bounds); beyond, see kAutomaticBudgetAngle. At most 60°.
   double min_angle_deg = 20.0;
   // Global maximum triangle area (-a0.01); <= 0: none.
   double max_area = -1.0;
@@ -112,7 +120,9 @@ struct RefineOptions {
   // mesh is Delaunay within each connected region (diametral circles are
   // used whatever `encroachment` says).
   bool conforming_delaunay = false;
-  // §3.6: split segments on concentric shells around input vertices and
+  // §3.6: split segments on concentric shells around input vertices (at a
+  // hub, a vertex of three or more segments with wedges under 10°, every
+  // subsegment on a grid of power-of-two radii around it) and
   // leave alone skinny triangles that sit in small input angles (< 60°),
   // which is what makes refinement terminate on every input. Also left: the
   // skinny triangles of thin channels between the sides of a spike (sides of
@@ -155,12 +165,26 @@ struct RefineStats {
   std::size_t below_small_input_angle = 0;  // in an input angle < 60° or a spike's channel (§3.6): expected
   std::size_t below_segment_protected = 0;  // needed a split that -Y/-YY forbids
   std::size_t below_budget = 0;             // left when a budget/time limit stopped refinement
+  std::size_t below_out_of_reach = 0;       // left where refinement beyond kAutomaticBudgetAngle stalled
   std::size_t below_precision = 0;          // at the resolution of doubles: no distinct point fits
   // Triangles still above their area / edge-length bound.
   std::size_t too_large = 0;
   std::size_t too_large_precision = 0;  // ... because no split of them fits at the resolution of doubles
 
   double min_angle_deg = 0.0;  // the bound refined for
+  // The smallest angle of the triangles not left at small input angles
+  // (min_angle_deg when all of them meet it).
+  double reached_angle_deg = 0.0;
+  // Above kAutomaticBudgetAngle: refinement towards the bound stopped
+  // making progress (budget_exhausted is set too, complete is false). Half of
+  // its last Steiner points lie within stall_radius of (stall_x, stall_y).
+  // When that left a smaller smallest angle than the mesh refined to
+  // kept_angle_deg (= kAutomaticBudgetAngle), that mesh is returned and
+  // the discarded_steiner points added after it are dropped.
+  bool stalled = false;
+  double stall_x = 0.0, stall_y = 0.0, stall_radius = 0.0;
+  double kept_angle_deg = 0.0;
+  std::size_t discarded_steiner = 0;
   double seconds = 0.0;
   std::size_t peak_queue = 0;  // largest number of queued bad triangles
 

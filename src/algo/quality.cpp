@@ -132,6 +132,9 @@ std::string QualityReport::text() const {
       o << "    at input angles < 60° (expected): " << refine->below_small_input_angle << "\n";
       if (refine->below_segment_protected) o << "    needing a segment split -Y/-YY forbids: " << refine->below_segment_protected << "\n";
       if (refine->below_budget) o << "    left when a budget stopped refinement: " << refine->below_budget << "\n";
+      if (refine->below_out_of_reach)
+        o << "    where the bound is out of reach (best there " << fmt(refine->reached_angle_deg)
+          << "°): " << refine->below_out_of_reach << "\n";
       if (refine->below_precision) o << "    at the precision of doubles: " << refine->below_precision << "\n";
     }
   }
@@ -173,7 +176,9 @@ std::string QualityReport::json() const {
       << ",\"rejected_points\":" << s.rejected_points << ",\"small_angle_skips\":" << s.small_angle_skips
       << ",\"below_bound\":" << s.below_bound << ",\"below_reasons\":{\"small_input_angle\":"
       << s.below_small_input_angle << ",\"segment_protected\":" << s.below_segment_protected
-      << ",\"budget\":" << s.below_budget << ",\"precision\":" << s.below_precision << "}"
+      << ",\"budget\":" << s.below_budget << ",\"out_of_reach\":" << s.below_out_of_reach
+      << ",\"precision\":" << s.below_precision << "}"
+      << ",\"reached_angle\":" << num(s.reached_angle_deg) << ",\"stalled\":" << (s.stalled ? "true" : "false")
       << ",\"too_large\":" << s.too_large << ",\"too_large_precision\":" << s.too_large_precision
       << ",\"seconds\":" << num(s.seconds) << "}";
   }

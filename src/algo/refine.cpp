@@ -70,6 +70,27 @@ double diametral_dot(const Point& a, const Point& b, const Point& p) {
   return detail::signed_estimate(n, sum);
 }
 
+// The coarsest multiple of a power of two in the middle of [lo, hi], at
+// least 1 - 1/sqrt2 of the way from either end (for lo = 0, the concentric
+// shell). Splits of the segments around one apex then all fall on one
+// nested set of radii: vertices of neighbouring segments sit at equal radii
+// or as far apart as the subsegments they split. Midpoints of subsegments
+// of unequal segments drift into pairs of radii far closer than the local
+// feature size; the short edges between them make skinny triangles whose
+// splits, mirrored around the apex, cascade (hubs of many spokes of random
+// lengths ran to the budget).
+double grid_radius(double lo, double hi) {
+  const double margin = (1.0 - 0.5 * std::numbers::sqrt2) * (hi - lo);
+  const double l = lo + margin, h = hi - margin;
+  int ex;
+  std::frexp(hi, &ex);  // hi < 2^ex
+  for (double step = std::ldexp(1.0, ex); step > 0; step *= 0.5) {
+    const double r = std::floor(h / step) * step;
+    if (r >= l) return r;
+  }
+  return 0.5 * (lo + hi);
+}
+
 inline double dist2(const Point& a, const Point& b) {
   const double dx = a.x - b.x, dy = a.y - b.y;
   return dx * dx + dy * dy;
@@ -99,7 +120,7 @@ constexpr double kChannelGap = 64.0;
 constexpr int kRequeueRounds = 4;
 
 // Why a bad triangle was left alone.
-enum class Reason : std::uint8_t { None, SmallAngle, Protected, Precision, Budget };
+enum class Reason : std::uint8_t { None, SmallAngle, Protected, Precision, Budget, OutOfReach };
 
 struct QueueEntry {
   TriId t;
@@ -211,6 +232,12 @@ class Refiner {
   void run();
 
  private:
+  void set_bound(double theta);
+  void queue_encroached();
+  void refine_loop(ProgressReporter& progress);
+  void go_beyond(ProgressReporter& progress);
+  void checkpoint();
+  double smallest_sin2(bool outside_small_angles) const;
   // ---- setup -------------------------------------------------------------
   void setup();
   void reserve_for_area_bounds();
@@ -286,6 +313,7 @@ class Refiner {
   void insert_interior(const Point& c, TriId seed);
   bool split_segment(HalfEdgeId e, const Point* at = nullptr, int depth = 0);
   void mirror(std::uint32_t seg, VertexId apex, double radius, int depth);
+  double gap2(std::uint32_t s, std::uint32_t t, VertexId apex, double radius) const;
   TriId take_slot(std::size_t i, std::size_t fan, VertexId v);
   void carry_attributes();
   bool budget_left();
@@ -381,6 +409,18 @@ class Refiner {
   int requeues_ = 0;
   std::size_t requeue_mark_ = SIZE_MAX;  // Steiner points when the last requeue round began
   bool stopped_ = false;
+
+  // Progress watch (above the guaranteed range).
+  bool watch_ = false;
+  std::size_t watch_cap_ = 0;
+  std::size_t next_check_ = 0;
+  std::size_t check_interval_ = 0;
+  std::size_t window_start_ = 0;       // first vertex added since the last checkpoint
+  std::size_t best_bad_ = SIZE_MAX;    // fewest triangles below the bound at a checkpoint
+  double best_sin2_ = -1;              // best smallest angle (sin^2) outside small input angles
+  int stale_checks_ = 0;
+  bool stalled_ = false;
+  bool beyond_ = false;                // the bound is above kAutomaticBudgetAngle
 };
 
 // ===========================================================================
@@ -390,29 +430,20 @@ void Refiner::setup() {
   n_input_ = pts_.size();
   st_.input_vertices = n_input_;
   const double theta = std::clamp(opt_.min_angle_deg, 0.0, 60.0);
-  st_.min_angle_deg = theta;
-  const double rad = theta * std::numbers::pi / 180.0;
-  sin2_bound_ = theta > 0 ? std::sin(rad) * std::sin(rad) : 0.0;
-  // The off-centre sits where the shortest edge pq subtends the bound
-  // angle, i.e. at distance |pq|/2 · cot(theta/2) from pq's midpoint; a
-  // little nearer, so that the new triangle clears the bound after rounding.
-  off_factor_ = theta > 0 ? 0.5 * kOffcentreShrink / std::tan(rad / 2) : 0.0;
   shell_cos_ = std::cos(kShellApexAngle * std::numbers::pi / 180);
   small_cos2_ = std::cos(kWedgeAngle * std::numbers::pi / 180) * std::cos(kWedgeAngle * std::numbers::pi / 180);
   shortest_first_ = opt_.order == RefineOrder::ShortestEdgeFirst;
   best_ = opt_.steiner == SteinerRule::Best && theta > 0;
-  bound_rad_ = rad;
   lens_ = opt_.encroachment == EncroachmentRule::DiametralLens && !opt_.conforming_delaunay;
-  if (lens_) {
-    const double phi = std::max(90.0, 180.0 - 2.0 * theta) * std::numbers::pi / 180.0;
-    lens_cos2_ = std::cos(phi) * std::cos(phi);
-  }
+  // Beyond the bounds refinement reaches in practice, first refine to
+  // kAutomaticBudgetAngle, which terminates, then go on (go_beyond()).
+  beyond_ = theta > kAutomaticBudgetAngle;
+  set_bound(beyond_ ? kAutomaticBudgetAngle : theta);
   carry_bounds_ = m_.has_triangle_area_bounds();
   has_area_bounds_ = opt_.use_triangle_area_bounds && carry_bounds_;
   sized_ = opt_.max_area > 0 || has_area_bounds_ || opt_.max_area_at || opt_.max_edge_at;
   budget_ = opt_.max_steiner;
-  if (budget_ == kAutomaticBudget)
-    budget_ = theta <= kAutomaticBudgetAngle ? 2'000'000 + 50 * n_input_ : 1'000'000 + 10 * n_input_;
+  if (budget_ == kAutomaticBudget) budget_ = kAutomaticBudgetBase + kAutomaticBudgetPerVertex * n_input_;
 
   // Bounding box: the precision floor for splitting.
   double lox = 0, hix = 0, loy = 0, hiy = 0;
@@ -521,6 +552,22 @@ void Refiner::setup() {
   seg_of_.assign(n_input_, kNone);
   if (!m_.vertex_markers().empty()) m_.vertex_markers().resize(n_input_, 0);
   reserve_for_area_bounds();
+}
+
+// The angle criterion and what depends on it.
+void Refiner::set_bound(double theta) {
+  st_.min_angle_deg = theta;
+  const double rad = theta * std::numbers::pi / 180.0;
+  sin2_bound_ = theta > 0 ? std::sin(rad) * std::sin(rad) : 0.0;
+  // The off-centre sits where the shortest edge pq subtends the bound
+  // angle, i.e. at distance |pq|/2 · cot(theta/2) from pq's midpoint; a
+  // little nearer, so that the new triangle clears the bound after rounding.
+  off_factor_ = theta > 0 ? 0.5 * kOffcentreShrink / std::tan(rad / 2) : 0.0;
+  bound_rad_ = rad;
+  if (lens_) {
+    const double phi = std::max(90.0, 180.0 - 2.0 * theta) * std::numbers::pi / 180.0;
+    lens_cos2_ = std::cos(phi) * std::cos(phi);
+  }
 }
 
 // Spike sides: from the sides of the narrow wedges, along chains of
@@ -984,6 +1031,32 @@ Point Refiner::split_point(VertexId a, VertexId b) const {
     if (half > shell * std::numbers::sqrt2) shell *= 2;
     const double f = shell / len;
     return {apex.x + (other.x - apex.x) * f, apex.y + (other.y - apex.y) * f};
+  }
+  // Subsegments further out, on a segment in a narrow wedge (one with
+  // mirrored partners) at an apex of three or more segments (a hub): on the
+  // grid of radii around that apex. At a spike's tip (two segments) the
+  // channel rule copes and midpoints grade better.
+  if (opt_.small_angle_protection && !(ain && bin)) {
+    const std::uint32_t s = seg_of_[ain ? b : a];
+    if (s != kNone) {
+      VertexId apex = kNone;
+      double nearest = INFINITY;
+      for (int end = 0; end < 2; ++end) {
+        const VertexId w = segs_[s][end];
+        if (w == a || w == b || partners_[2 * s + end][0] == kNone ||
+            adj_start_[w + 1] - adj_start_[w] < 3)
+          continue;
+        const double d = std::min(dist2(pts_[w], A), dist2(pts_[w], B));
+        if (d < nearest) nearest = d, apex = w;
+      }
+      if (apex != kNone) {
+        const Point& P = pts_[apex];
+        const Point& O = pts_[segs_[s][0] == apex ? segs_[s][1] : segs_[s][0]];
+        const double ra = std::sqrt(dist2(P, A)), rb = std::sqrt(dist2(P, B));
+        const double f = grid_radius(std::min(ra, rb), std::max(ra, rb)) / std::sqrt(dist2(P, O));
+        return {P.x + (O.x - P.x) * f, P.y + (O.y - P.y) * f};
+      }
+    }
   }
   return {0.5 * (A.x + B.x), 0.5 * (A.y + B.y)};
 }
@@ -1589,11 +1662,29 @@ bool Refiner::split_segment(HalfEdgeId e, const Point* at, int depth) {
       if (!(seg_small_[seg] & (1 << end))) continue;
       const VertexId apex = segs_[seg][end];
       const double radius = std::sqrt(dist2(mp, pts_[apex]));
-      for (std::uint32_t partner : partners_[2 * seg + end])
-        if (partner != kNone) mirror(partner, apex, radius, depth + 1);
+      const double piece2 = std::min(dist2(mp, pts_[a]), dist2(mp, pts_[b]));
+      for (std::uint32_t partner : partners_[2 * seg + end]) {
+        if (partner == kNone) continue;
+        // Pieces shorter than the gap to the partner there do not encroach
+        // it: mirroring them would carry fine splits made for some other
+        // feature (a crossing further out) to where the partner needs none.
+        if (piece2 < gap2(seg, partner, apex, radius)) continue;
+        mirror(partner, apex, radius, depth + 1);
+      }
     }
   }
   return true;
+}
+
+// Squared distance between segments s and t (both ending at apex) at
+// distance `radius` from the apex.
+double Refiner::gap2(std::uint32_t s, std::uint32_t t, VertexId apex, double radius) const {
+  const Point& A = pts_[apex];
+  const Point& S = pts_[segs_[s][0] == apex ? segs_[s][1] : segs_[s][0]];
+  const Point& T = pts_[segs_[t][0] == apex ? segs_[t][1] : segs_[t][0]];
+  const double ux = S.x - A.x, uy = S.y - A.y, wx = T.x - A.x, wy = T.y - A.y;
+  const double cross = ux * wy - uy * wx;
+  return radius * radius * cross * cross / ((ux * ux + uy * uy) * (wx * wx + wy * wy));
 }
 
 // Splits segment `seg` (one end at `apex`) at distance `radius` from the
@@ -1678,15 +1769,96 @@ void Refiner::run() {
     ~CountAppended() { r.count_appended(); }
   } count_on_exit{*this};
   setup();
+  queue_encroached();
   const std::size_t nt = tv_.size() / 3;
+  for (TriId t = 0; t < nt; ++t) consider(t);
+  ProgressReporter progress(opt_.progress, "refine", "Steiner points");
+  refine_loop(progress);
+  if (beyond_ && !stopped_) go_beyond(progress);
+  else if (beyond_) set_bound(std::clamp(opt_.min_angle_deg, 0.0, 60.0));  // report against the bound asked for
+  finish();
+}
+
+// sin^2 of the smallest angle of the mesh; outside_small_angles: of the
+// triangles not left alone at small input angles.
+double Refiner::smallest_sin2(bool outside_small_angles) const {
+  double low = 1.0;
+  const std::size_t nt = tv_.size() / 3;
+  for (TriId t = 0; t < nt; ++t) {
+    if (outside_small_angles && t < why_.size() && why_[t] == Reason::SmallAngle) continue;
+    const Point& a = pts_[tv_[3 * t]];
+    const Point& b = pts_[tv_[3 * t + 1]];
+    const Point& c = pts_[tv_[3 * t + 2]];
+    const double l0 = dist2(a, b), l1 = dist2(b, c), l2 = dist2(c, a);
+    const double cross = (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
+    const double den = std::max({l0 * l1, l1 * l2, l2 * l0});  // the two longer edges
+    if (den > 0) low = std::min(low, cross * cross / den);
+  }
+  return low;
+}
+
+// Above kAutomaticBudgetAngle, where Delaunay refinement need not end
+// (Shewchuk 2002 reports termination in practice up to about 33.8°): the
+// mesh refined to kAutomaticBudgetAngle is kept aside, and refinement goes
+// on to the requested bound, worst triangles first (shortest-edge-first
+// lets the smallest angle collapse where points spiral into a corner),
+// watched by checkpoint(). If it stops short, the mesh with the larger
+// smallest angle (overall and outside small input angles) is returned.
+void Refiner::go_beyond(ProgressReporter& progress) {
+  count_appended();
+  const double kept_all = smallest_sin2(false), kept_outside = smallest_sin2(true);
+  Mesh kept = m_;
+  const std::vector<Reason> kept_why = why_;
+  const RefineStats kept_st = st_;
+  set_bound(std::clamp(opt_.min_angle_deg, 0.0, 60.0));
+  shortest_first_ = false;
+  skipped_.clear();
+  requeues_ = 0;
+  requeue_mark_ = SIZE_MAX;
+  queue_encroached();
+  const std::size_t nt = tv_.size() / 3;
+  for (TriId t = 0; t < nt; ++t) consider(t);
+  watch_ = true;
+  watch_cap_ = st_.steiner_points + 4 * pts_.size() + 10000;
+  refine_loop(progress);
+  count_appended();
+  if (!(stalled_ || st_.budget_exhausted || st_.time_exhausted)) return;
+  if (smallest_sin2(false) >= kept_all && smallest_sin2(true) >= kept_outside) return;
+  const RefineStats later = st_;
+  m_ = std::move(kept);  // the references to its arrays stay valid
+  why_ = kept_why;
+  st_ = kept_st;
+  st_.min_angle_deg = later.min_angle_deg;
+  st_.stalled = later.stalled;
+  st_.stall_x = later.stall_x, st_.stall_y = later.stall_y, st_.stall_radius = later.stall_radius;
+  st_.budget_exhausted = later.budget_exhausted;
+  st_.time_exhausted = later.time_exhausted;
+  st_.peak_queue = later.peak_queue;
+  st_.discarded_steiner = later.steiner_points - kept_st.steiner_points;
+  st_.kept_angle_deg = kAutomaticBudgetAngle;
+}
+
+// Encroached subsegments, for rule R1 before anything else.
+void Refiner::queue_encroached() {
   for (HalfEdgeId e = 0; e < tv_.size(); ++e)
     if ((fl_[e] & kConstrained) && (tw_[e] == kNone || tw_[e] > e) && encroached(e) && splittable(e))
       encroached_.push_back({tv_[e], tv_[next_edge(e)], e});
-  for (TriId t = 0; t < nt; ++t) consider(t);
+}
+
+// Rules R1 and R2 until nothing is left to do or a budget stops them.
+void Refiner::refine_loop(ProgressReporter& progress) {
   const bool timed = opt_.time_limit_seconds > 0;
-  ProgressReporter progress(opt_.progress, "refine", "Steiner points");
+  if (watch_) {
+    check_interval_ = std::max<std::size_t>(256, pts_.size() / 8);
+    next_check_ = st_.steiner_points + check_interval_;
+    window_start_ = pts_.size();
+  }
   while (!stopped_) {
     if (progress.active()) progress.set(st_.steiner_points);
+    if (watch_ && st_.steiner_points >= next_check_) {
+      checkpoint();
+      if (stopped_) break;
+    }
     if (timed && (++iterations_ & 255) == 0 &&
         std::chrono::duration<double>(Clock::now() - start_).count() > opt_.time_limit_seconds) {
       st_.time_exhausted = true;
@@ -1746,7 +1918,53 @@ void Refiner::run() {
       }
     }
   }
-  finish();
+}
+
+// Progress above the guaranteed range: every check_interval_ Steiner points,
+// the triangles still below the bound (outside small input angles) and the
+// smallest angle among them. Refinement that neither cuts their number by a
+// tenth nor raises that angle over two intervals is not converging: its
+// points pile up in one neighbourhood (off-centres spiralling into a corner)
+// while the smallest angle there stays put, as Delaunay refinement does
+// beyond the bounds it is known to reach (Shewchuk 2002: ~33.8° in
+// practice). The last interval's points name the place.
+void Refiner::checkpoint() {
+  next_check_ = st_.steiner_points + check_interval_;
+  std::size_t bad = 0;
+  double low = 1.0;
+  const std::size_t nt = tv_.size() / 3;
+  for (TriId t = 0; t < nt; ++t) {
+    const Eval ev = eval(t);
+    if (!ev.skinny || (t < why_.size() && why_[t] == Reason::SmallAngle)) continue;
+    ++bad;
+    low = std::min(low, ev.sin2);
+  }
+  const bool fewer = bad < best_bad_ - best_bad_ / 4 || best_bad_ == SIZE_MAX;
+  const bool higher = low > best_sin2_ * 1.02;  // about half a degree near 35°
+  best_bad_ = std::min(best_bad_, bad);
+  best_sin2_ = std::max(best_sin2_, low);
+  const bool capped = st_.steiner_points >= watch_cap_;
+  if (!capped && (fewer || higher)) {
+    stale_checks_ = 0;
+  } else if (capped || ++stale_checks_ >= 2) {
+    // Where the last interval's points went: their coordinate-wise median,
+    // and the median distance from it.
+    std::vector<double> xs, ys, ds;
+    for (std::size_t v = window_start_; v < pts_.size(); ++v) xs.push_back(pts_[v].x), ys.push_back(pts_[v].y);
+    if (!xs.empty()) {
+      auto median = [](std::vector<double>& a) {
+        std::nth_element(a.begin(), a.begin() + a.size() / 2, a.end());
+        return a[a.size() / 2];
+      };
+      const Point c{median(xs), median(ys)};
+      for (std::size_t v = window_start_; v < pts_.size(); ++v) ds.push_back(std::sqrt(dist2(pts_[v], c)));
+      st_.stall_x = c.x, st_.stall_y = c.y, st_.stall_radius = median(ds);
+    }
+    stalled_ = true;
+    stopped_ = true;
+    st_.stalled = true;
+  }
+  window_start_ = pts_.size();
 }
 
 void Refiner::count_appended() {
@@ -1756,32 +1974,38 @@ void Refiner::count_appended() {
 
 void Refiner::finish() {
   count_appended();
-  const bool stopped = st_.budget_exhausted || st_.time_exhausted;
+  const bool stopped = st_.budget_exhausted || st_.time_exhausted || stalled_;
   // Classify what is left by the reason recorded when each triangle was
   // last left alone (linear: no decision is repeated here). A bad triangle
   // without one was still waiting when a budget stopped refinement.
   const std::size_t nt = tv_.size() / 3;
+  double low_outside = 2.0;
   for (TriId t = 0; t < nt; ++t) {
     const Eval ev = eval(t);
     if (!ev.skinny && !ev.large) continue;
     Reason why = t < why_.size() ? why_[t] : Reason::None;
-    if (why == Reason::None) why = stopped ? Reason::Budget : Reason::Precision;
+    if (why == Reason::None) why = stalled_ ? Reason::OutOfReach : (stopped ? Reason::Budget : Reason::Precision);
     if (ev.large) {
       ++st_.too_large;
       if (why == Reason::Precision) ++st_.too_large_precision;
     }
     if (!ev.skinny) continue;
     ++st_.below_bound;
+    if (why != Reason::SmallAngle) low_outside = std::min(low_outside, ev.sin2);
     switch (why) {
       case Reason::SmallAngle: ++st_.below_small_input_angle; break;
       case Reason::Protected: ++st_.below_segment_protected; break;
       case Reason::Budget: ++st_.below_budget; break;
+      case Reason::OutOfReach: ++st_.below_out_of_reach; break;
       default: ++st_.below_precision; break;
     }
   }
   // Complete: no budget stopped it and every triangle is within its size
   // bound (skinny triangles may remain for the reasons counted above).
+  st_.reached_angle_deg =
+      low_outside > 1.0 ? st_.min_angle_deg : std::asin(std::sqrt(low_outside)) * 180.0 / std::numbers::pi;
   st_.complete = !stopped && st_.too_large == 0;
+  if (stalled_) st_.budget_exhausted = true;  // the progress watch is a budget: the mesh is as good as it got
   st_.seconds = std::chrono::duration<double>(Clock::now() - start_).count();
 }
 
@@ -1791,7 +2015,16 @@ std::string RefineStats::summary() const {
   std::ostringstream out;
   const bool stopped = budget_exhausted || time_exhausted;
   out << "refinement " << (complete ? "complete" : (stopped ? "stopped early" : "incomplete"));
-  if (budget_exhausted) out << " (Steiner budget reached)";
+  if (stalled) {
+    out << " (" << min_angle_deg << "° out of reach: no progress while half the last Steiner points went within "
+        << stall_radius << " of (" << stall_x << ", " << stall_y << "); " << reached_angle_deg
+        << "° reached outside small input angles";
+    if (discarded_steiner)
+      out << ", the mesh refined to " << kept_angle_deg << "° kept, " << discarded_steiner << " later Steiner points dropped";
+    out << ")";
+  } else if (budget_exhausted) {
+    out << " (Steiner budget reached)";
+  }
   if (time_exhausted) out << " (time limit reached)";
   out << ": " << steiner_points << " Steiner points (" << segment_splits << " on segments, " << interior_points
       << " inside, " << offcenters << " off-centres), " << rejected_points << " encroaching points rejected";
@@ -1800,6 +2033,7 @@ std::string RefineStats::summary() const {
     if (below_small_input_angle) out << " " << below_small_input_angle << " at input angles < 60°";
     if (below_segment_protected) out << " " << below_segment_protected << " need a split -Y forbids";
     if (below_budget) out << " " << below_budget << " left by the budget";
+    if (below_out_of_reach) out << " " << below_out_of_reach << " where the bound is out of reach";
     if (below_precision) out << " " << below_precision << " at the precision of doubles";
   }
   if (too_large > 0) {
