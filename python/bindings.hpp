@@ -3,6 +3,7 @@
 // triangulate() and adapt() over the library's pipeline (triangulate.cpp),
 // the other functions (tools.cpp), the module definition (module.cpp).
 #pragma once
+#include "mesh/edge_rules.hpp"  // real_twin, edge_output_marker: one home with the io layer
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 
@@ -83,8 +84,6 @@ py::array_t<T> array_2d(const std::vector<T>& v, std::size_t cols) {
   return a;
 }
 
-// The neighbour across half-edge e when it is a real triangle, else kNone.
-HalfEdgeId real_twin(const Mesh& m, HalfEdgeId e);
 
 // The result dict, Triangle's keys and layout (markers as (n, 1) int32);
 // holes and regions are the input's (written back with 'p').

@@ -222,26 +222,20 @@ InputArrays arrays_from_dict(const py::dict& d) {
 }
 
 
-// Triangle's output marker of an edge: its segment's marker when nonzero,
-// else 1 on the boundary, else 0.
-int edge_marker(const Mesh& m, HalfEdgeId e, HalfEdgeId twin) {
-  int marker = m.edge_marker(e);
-  if (marker == 0 && twin != kNone) marker = m.edge_marker(twin);
-  if (marker != 0) return marker;
-  return twin == kNone ? 1 : 0;
-}
-
-HalfEdgeId real_twin(const Mesh& m, HalfEdgeId e) {
-  const HalfEdgeId f = m.twin(e);
-  return f == kNone || !m.is_real(tri_of(f)) ? kNone : f;
-}
-
-
 py::dict refine_stats_dict(const RefineStats& s) {
   py::dict d;
   d["complete"] = s.complete;
   d["budget_exhausted"] = s.budget_exhausted;
   d["time_exhausted"] = s.time_exhausted;
+  d["stalled"] = s.stalled;
+  d["reached_angle"] = s.reached_angle_deg;
+  d["below_out_of_reach"] = s.below_out_of_reach;
+  if (s.stalled) {
+    d["stall_center"] = py::make_tuple(s.stall_x, s.stall_y);
+    d["stall_radius"] = s.stall_radius;
+    d["kept_angle"] = s.kept_angle_deg;
+    d["discarded_steiner"] = s.discarded_steiner;
+  }
   d["input_vertices"] = s.input_vertices;
   d["steiner_points"] = s.steiner_points;
   d["segment_splits"] = s.segment_splits;
@@ -328,7 +322,7 @@ py::dict mesh_dict(const RunResult& res, const Plan& o, const Pslg& seeds) {
       const HalfEdgeId tw = real_twin(mesh, e);
       if (tw != kNone && tw < e) continue;
       const std::int32_t a = static_cast<std::int32_t>(mesh.origin(e)), b = static_cast<std::int32_t>(mesh.dest(e));
-      const int marker = edge_marker(mesh, e, tw);
+      const int marker = edge_output_marker(mesh, e, tw);
       if (o.edges) {
         edges.insert(edges.end(), {a, b});
         edge_mk.push_back(marker);

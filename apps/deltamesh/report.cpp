@@ -91,7 +91,13 @@ void report(const Session& s, const RunResult& r, const std::vector<std::string>
   if (r.adapted) std::printf("Coarsened: %s\n", r.adapt.coarsen.summary().c_str());
   if (r.refined) {
     std::printf("Quality mesh: %s\n", refine_stats.summary().c_str());
-    if (refine_stats.budget_exhausted || refine_stats.time_exhausted)
+    if (refine_stats.stalled)
+      std::fprintf(stderr,
+                   "deltamesh: warning: %g° is out of reach: refinement stopped making progress near (%g, %g) "
+                   "(radius %g); kept a mesh with smallest angle %g° outside small input angles\n",
+                   refine_stats.min_angle_deg, refine_stats.stall_x, refine_stats.stall_y, refine_stats.stall_radius,
+                   refine_stats.reached_angle_deg);
+    else if (refine_stats.budget_exhausted || refine_stats.time_exhausted)
       std::fprintf(stderr, "deltamesh: warning: refinement stopped by its budget before reaching the requested quality\n");
     else if (!refine_stats.complete)
       std::fprintf(stderr, "deltamesh: warning: refinement left %zu triangles above their size bound%s\n",

@@ -184,6 +184,22 @@ class Quality(unittest.TestCase):
         # Q silences it.
         quiet_triangulate(square_with_hole(), "pq30S5Q")
 
+    def test_bound_out_of_reach_stops_early_and_says_where(self):
+        # Above 34 degrees refinement watches its progress; at 45 on this
+        # domain it stalls, keeps the mesh refined to 34 and reports it.
+        with self.assertWarnsRegex(UserWarning, "45° out of reach"):
+            mesh = deltamesh.triangulate(square_with_hole(), "pq45")
+        deltamesh.validate(mesh)
+        r = mesh["stats"]["refine"]
+        self.assertFalse(mesh["stats"]["complete"])
+        self.assertTrue(r["stalled"])
+        self.assertGreater(r["below_out_of_reach"], 0)
+        self.assertGreaterEqual(r["reached_angle"], 34.0)
+        self.assertLess(r["reached_angle"], 45.0)
+        self.assertEqual(len(r["stall_center"]), 2)
+        self.assertGreater(r["stall_radius"], 0.0)
+        self.assertGreaterEqual(min(min_angles(mesh)), 34.0 - 1e-9)
+
     def test_size_function(self):
         def f(x, y):
             return 0.001 if x < 0.3 else 0.05
