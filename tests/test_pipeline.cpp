@@ -83,6 +83,14 @@ TEST(PipelinePlan, UsageErrorsNameTheSwitch) {
   EXPECT_EQ(message({"--cdt=x"}), "--cdt=x: the method must be fast, ct, lawson or lifting");
   EXPECT_EQ(message({"--cdt"}), "option --cdt needs a value");
   EXPECT_EQ(message({"--smooth", "-D"}), "--smooth cannot be combined with -D: moved vertices may encroach segments");
+  // A misspelled long option is unknown, with or without a value, and the
+  // nearest known name is suggested (it used to say "takes no value").
+  EXPECT_EQ(message({"--time-limt=5"}), "unknown option --time-limt (did you mean --time-limit?)");
+  EXPECT_EQ(message({"--cdtt=ct"}), "unknown option --cdtt (did you mean --cdt?)");
+  EXPECT_EQ(message({"--outptu=x.msh"}), "unknown option --outptu (did you mean --output?)");
+  EXPECT_EQ(message({"--quite"}), "unknown option --quite (did you mean --quiet?)");
+  EXPECT_EQ(message({"--frobnicate=3"}), "unknown option --frobnicate (see deltamesh --help)");
+  EXPECT_EQ(message({"--quiet=3"}), "option --quiet takes no value");
   CommandLine cl;
   EXPECT_THROW(apply_long_option(cl, "--max-area", "0"), UsageError);
   apply_long_option(cl, "--min-angle", "28.5");

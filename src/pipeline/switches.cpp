@@ -1,6 +1,7 @@
 // Triangle's switch strings and the long options, parsed into a CommandLine.
 #include "deltamesh/switches.hpp"
 
+#include "deltamesh/errors.hpp"
 #include "deltamesh/formats.hpp"
 
 #include <algorithm>
@@ -10,6 +11,7 @@
 #include <cmath>
 #include <iterator>
 #include <string_view>
+#include <vector>
 
 namespace deltamesh {
 
@@ -132,12 +134,57 @@ class SwitchString {
 };
 
 // Long options that take a value (--smooth's is optional: parsed apart).
+bool is_value_option(std::string_view name);
+
+// Long options that take no value (--smooth's is optional).
+constexpr std::string_view kFlagNames[] = {
+    "--help", "--version", "--strict", "--quiet", "--verbose", "--check", "--zero-based", "--jettison",
+    "--edges", "--neighbors", "--no-node", "--no-ele", "--no-poly", "--no-iteration", "--no-markers",
+    "--convex-hull", "--regional-attributes", "--ignore-holes", "--vtu-binary", "--geojson-segments",
+    "--voronoi-overlay", "--poly", "--refine", "--adapt", "--quality", "--regional-area", "--user-area",
+    "--conforming-delaunay", "--voronoi", "--off", "--second-order", "--no-boundary-steiner", "--incremental",
+    "--sweepline", "--vertical-cuts", "--no-exact", "--split-segments", "--smooth"};
+constexpr std::string_view kValueNames[] = {
+    "--svg",   "--output",   "--msh-version",    "--region-property", "--area-property",
+    "--min-angle", "--max-area", "--steiner-budget", "--cdt",            "--steiner",
+    "--encroachment", "--order", "--time-limit",    "--stats",           "--fill"};
+
+std::size_t edit_distance(std::string_view a, std::string_view b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diag = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t up = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diag + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      diag = up;
+    }
+  }
+  return row[b.size()];
+}
+
+// "unknown option --time-limt (did you mean --time-limit?)": the nearest
+// known name within a third of its length, if any.
+UsageError unknown_option(const std::string& name) {
+  std::string_view best;
+  std::size_t best_d = name.size() / 3 + 1;
+  const auto nearest = [&](std::string_view known) {
+    const std::size_t d = edit_distance(name, known);
+    if (d < best_d) best_d = d, best = known;
+  };
+  for (std::string_view known : kFlagNames) nearest(known);
+  for (std::string_view known : kValueNames) nearest(known);
+  if (best.empty()) return UsageError{"unknown option " + name + " (see deltamesh --help)"};
+  return UsageError{"unknown option " + name + " (did you mean " + std::string(best) + "?)"};
+}
+
 bool is_value_option(std::string_view name) {
-  static constexpr std::string_view kNames[] = {
-      "--svg",   "--output",   "--msh-version",    "--region-property", "--area-property",
-      "--min-angle", "--max-area", "--steiner-budget", "--cdt",            "--steiner",
-      "--encroachment", "--order", "--time-limit",    "--stats",           "--fill"};
-  return std::find(std::begin(kNames), std::end(kNames), name) != std::end(kNames);
+  return std::find(std::begin(kValueNames), std::end(kValueNames), name) != std::end(kValueNames);
+}
+
+bool is_flag_option(std::string_view name) {
+  return std::find(std::begin(kFlagNames), std::end(kFlagNames), name) != std::end(kFlagNames);
 }
 
 }  // namespace
@@ -231,7 +278,7 @@ void apply_long_option(CommandLine& cl, std::string_view name_view, std::string_
     if (!r) throw UsageError{"--fill=" + v + ": the rule must be holes or evenodd"};
     cl.plan.domain.fill = *r;
   } else {
-    throw UsageError{"unknown option " + name + " (see deltamesh --help)"};
+    throw unknown_option(name);
   }
 }
 
@@ -264,6 +311,7 @@ CommandLine parse_arguments(const std::vector<std::string>& args) {
           o.plan.smooth = n;
         }
       } else {
+        if (!is_flag_option(name)) throw unknown_option(name);
         no_value(name);
         if (name == "--help") o.help = true;
         else if (name == "--version") o.version = true;
@@ -303,7 +351,7 @@ CommandLine parse_arguments(const std::vector<std::string>& args) {
                        : name == "--no-exact" ? 'X' : 's';
           if (std::find(o.compat_notes.begin(), o.compat_notes.end(), c) == o.compat_notes.end()) o.compat_notes.push_back(c);
         }
-        else throw UsageError{"unknown option " + name + " (see deltamesh --help)"};
+        else throw InternalError("parse_arguments", "flag " + name + " is listed but not handled");
       }
     } else if (a.size() > 1 && a[0] == '-') {
       SwitchString(std::string_view(a).substr(1), o).parse();
