@@ -124,6 +124,31 @@ TEST_F(Cli, NodeInputWritesIterationOne) {
   EXPECT_CONTAINS(r.out, "Delaunay triangulation");
 }
 
+// -I names the output like the input: an output that would replace a file
+// this run read is refused before anything is written (exit 4), unless
+// --overwrite asks for it.
+TEST_F(Cli, OutputsNeverReplaceAnInputUnlessAsked) {
+  data("square_hole.poly", "dupI.poly");
+  const std::string original = slurp(path("dupI.poly"));
+  Result r = run("-pI dupI");
+  EXPECT_EQ(r.code, 4) << r.err;
+  EXPECT_CONTAINS(r.err, "refusing to overwrite the input file dupI.poly");
+  EXPECT_EQ(listing(), (std::vector<std::string>{"dupI.poly"}));  // not even the .node
+  EXPECT_EQ(slurp(path("dupI.poly")), original);
+  data("points.node", "ptsI.node");
+  r = run("-I ptsI");
+  EXPECT_EQ(r.code, 4) << r.err;
+  EXPECT_CONTAINS(r.err, "ptsI.node");
+  EXPECT_FALSE(exists("ptsI.ele"));
+  r = run("-pq30 dupI --output dupI.poly");
+  EXPECT_EQ(r.code, 4) << r.err;
+  EXPECT_EQ(slurp(path("dupI.poly")), original);
+  r = run("-pI --overwrite dupI");
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_TRUE(exists("dupI.ele"));
+  EXPECT_NE(slurp(path("dupI.poly")), original);
+}
+
 TEST_F(Cli, BaseNameWithoutExtensionAndIterationCounting) {
   data("points.node", "p.1.node");
   Result r = run("p.1");

@@ -42,6 +42,11 @@ struct Session {
   bool geojson = false;   // the input is GeoJSON
   InputName name;
   std::string input_path;  // the file being read, named by input errors
+  std::vector<std::string> inputs_read;  // every file read: outputs may not replace them
+  void reading(const std::string& path) {
+    input_path = path;
+    inputs_read.push_back(path);
+  }
   bool writing = false;    // an IoError from here on is an output error
   int first_index = 0;     // the input's numbering, kept in the output (unless -z)
   std::vector<Point> holes;          // the input's, written into the output .poly

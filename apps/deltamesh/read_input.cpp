@@ -34,13 +34,13 @@ RunInput read_mesh(Session& s, const std::string& in) {
   require_file(ele_path);
   if (poly) require_file(poly_path);
   if (area) require_file(area_path);
-  s.input_path = node_path;
+  s.reading(node_path);
   const auto t = Clock::now();
   RunInput r;
   r.pslg = read_node(node_path);
   s.first_index = r.pslg.first_index;
   if (poly) {
-    s.input_path = poly_path;
+    s.reading(poly_path);
     Pslg p = read_poly(poly_path);
     if (p.points.size() != r.pslg.points.size())
       throw InputError(poly_path + " lists " + std::to_string(p.points.size()) + " vertices but " + node_path +
@@ -49,12 +49,12 @@ RunInput read_mesh(Session& s, const std::string& in) {
     r.pslg.holes = s.holes = std::move(p.holes);
     r.pslg.regions = s.regions = std::move(p.regions);
   }
-  s.input_path = ele_path;
+  s.reading(ele_path);
   EleData ele = read_ele(ele_path, r.pslg.first_index);
   if (adapt) {
     const std::string mtr_path = in + ".mtr";
     require_file(mtr_path);
-    s.input_path = mtr_path;
+    s.reading(mtr_path);
     r.vertex_sizes = read_mtr(mtr_path);
     if (r.vertex_sizes.size() != r.pslg.points.size())
       throw InputError("has " + std::to_string(r.vertex_sizes.size()) + " sizes but " + node_path + " has " +
@@ -64,7 +64,7 @@ RunInput read_mesh(Session& s, const std::string& in) {
   }
   // -ra: per-triangle bounds (one per triangle of FILE.ele, <= 0: none).
   if (area) {
-    s.input_path = area_path;
+    s.reading(area_path);
     r.triangle_area_bounds = read_area(area_path);
     if (r.triangle_area_bounds.size() != ele.triangles.size() / 3)
       throw InputError("has " + std::to_string(r.triangle_area_bounds.size()) + " bounds for " +
@@ -85,7 +85,7 @@ RunInput read_mesh(Session& s, const std::string& in) {
                    "vertices renumbered in order%s\n",
                    ele_path.c_str(), dropped, s.plan.order == 2 ? " (-o2 writes new ones)" : " (add -o2 for new ones)");
   }
-  s.input_path = node_path;
+  s.reading(node_path);
   return r;
 }
 
@@ -131,7 +131,7 @@ RunInput read_input(Session& s) {
   const bool poly = s.plan.uses_segments();
   const std::string in_path = s.geojson ? s.cl.input : in + (poly ? ".poly" : ".node");
   require_file(in_path);
-  s.input_path = in_path;
+  s.reading(in_path);
   const auto t = Clock::now();
   RunInput r;
   if (s.geojson) {

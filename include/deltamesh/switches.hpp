@@ -39,6 +39,7 @@ struct CommandLine {
   bool no_node = false;       // -N
   bool no_ele = false;        // -E
   bool no_iteration = false;  // -I
+  bool overwrite = false;     // --overwrite: an output may replace an input file
   bool voronoi = false;       // -v  FILE.1.v.node, FILE.1.v.edge
   bool geomview = false;      // -g  FILE.1.off
   std::optional<std::string> svg_path;  // --svg PATH

@@ -55,6 +55,7 @@ Output files:
   -N  do not write the .node file                             --no-node
   -E  do not write the .ele file                              --no-ele
   -I  no iteration number: write FILE.node, FILE.ele           --no-iteration
+      (an output that would replace an input is refused)       --overwrite allows it
   -j  drop duplicate and unused vertices from the output      --jettison
   -B  no boundary markers in the output                       --no-markers
   -v  also write the Voronoi diagram (dual graph): FILE.1.v.node, FILE.1.v.edge

@@ -143,7 +143,7 @@ constexpr std::string_view kFlagNames[] = {
     "--convex-hull", "--regional-attributes", "--ignore-holes", "--vtu-binary", "--geojson-segments",
     "--voronoi-overlay", "--poly", "--refine", "--adapt", "--quality", "--regional-area", "--user-area",
     "--conforming-delaunay", "--voronoi", "--off", "--second-order", "--no-boundary-steiner", "--incremental",
-    "--sweepline", "--vertical-cuts", "--no-exact", "--split-segments", "--smooth"};
+    "--sweepline", "--vertical-cuts", "--no-exact", "--split-segments", "--smooth", "--overwrite"};
 constexpr std::string_view kValueNames[] = {
     "--svg",   "--output",   "--msh-version",    "--region-property", "--area-property",
     "--min-angle", "--max-area", "--steiner-budget", "--cdt",            "--steiner",
@@ -327,6 +327,7 @@ CommandLine parse_arguments(const std::vector<std::string>& args) {
         else if (name == "--no-ele") o.no_ele = true;
         else if (name == "--no-poly") o.no_poly = true;
         else if (name == "--no-iteration") o.no_iteration = true;
+        else if (name == "--overwrite") o.overwrite = true;
         else if (name == "--no-markers") o.plan.markers = false;
         else if (name == "--convex-hull") o.plan.domain.convex_hull = true;
         else if (name == "--regional-attributes") o.plan.domain.regional_attributes = true;
