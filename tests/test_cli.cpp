@@ -446,6 +446,28 @@ TEST_F(Cli, CheckSwitch) {
   EXPECT_CONTAINS(r.out, "mesh is valid");
 }
 
+// Two triangles sharing no vertex that overlap like a star of David: -r
+// refuses the mesh, naming both in the file's numbering and their .ele lines.
+TEST_F(Cli, RefineRefusesOverlappingTriangles) {
+  write("star.node", "6 2 0 0\n1 0 0\n2 2 0\n3 1 1.8\n4 0 1.2\n5 2 1.2\n6 1 -0.6\n");
+  write("star.ele", "# two triangles\n2 3 0\n1 1 2 3\n\n2 4 6 5\n");
+  Result r = run("-rC star");
+  EXPECT_EQ(r.code, 2) << r.err;
+  EXPECT_CONTAINS(r.err, "star.ele:3: triangles 1 and 2 (line 5) overlap");
+  EXPECT_FALSE(exists("star.1.ele"));
+  // A triangle inside another, zero-based file.
+  write("nest.node", "6 2 0 0\n0 0 0\n1 4 0\n2 0 4\n3 1 1\n4 2 1\n5 1 2\n");
+  write("nest.ele", "2 3 0\n0 0 1 2\n1 3 4 5\n");
+  r = run("-r nest");
+  EXPECT_EQ(r.code, 2) << r.err;
+  EXPECT_CONTAINS(r.err, "nest.ele:2: triangles 0 and 1 (line 3) overlap");
+  // Side by side they are a valid mesh.
+  write("pair.node", "4 2 0 0\n1 0 0\n2 1 0\n3 1 1\n4 0 1\n");
+  write("pair.ele", "2 3 0\n1 1 2 3\n2 1 3 4\n");
+  r = run("-rC pair");
+  EXPECT_EQ(r.code, 0) << r.err;
+}
+
 TEST_F(Cli, RefineReadsMeshAndWritesNextIteration) {
   data("square_hole.poly");
   Result r = run("-pA square_hole");

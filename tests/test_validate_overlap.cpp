@@ -41,7 +41,9 @@ CheckReport check_geometry(const Mesh& m) {
 Mesh from_list(const std::vector<Point>& points, const std::vector<VertexId>& tris) {
   Pslg nodes;
   nodes.points = points;
-  return mesh_from_triangles(nodes, tris);
+  RebuildOptions keep_overlaps;
+  keep_overlaps.refuse_overlaps = false;
+  return mesh_from_triangles(nodes, tris, 0, {}, keep_overlaps);
 }
 
 // ---- brute force, GMP-exact ----------------------------------------------
@@ -643,9 +645,26 @@ TEST(ValidateOverlap, RefinedMeshesWithHolesAreValid) {
 
 // ---- the command line -------------------------------------------------------
 
-TEST(ValidateOverlap, CliRefusesTheStarOfDavidWithCheck) {
-  // docs/cli.md: exit 5 when -C finds the mesh invalid. -r reads the mesh
-  // as it is; -C names both triangles (0-based slots, as read).
+TEST(ValidateOverlap, RebuildingRefusesOverlapsByDefault) {
+  Pslg nodes;
+  nodes.points = {{0, 2}, {-1.732, -1}, {1.732, -1}, {0, -2}, {1.732, 1}, {-1.732, 1}};
+  try {
+    (void)mesh_from_triangles(nodes, std::vector<VertexId>{0, 1, 2, 3, 5, 4});
+    ADD_FAILURE() << "the star of David was accepted";
+  } catch (const OverlappingTriangles& e) {
+    EXPECT_EQ(e.first(), 0u);
+    EXPECT_EQ(e.second(), 1u);
+    EXPECT_EQ(e.how(), "overlap");
+  }
+  // Side by side: accepted and valid.
+  nodes.points = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+  const Mesh m = mesh_from_triangles(nodes, std::vector<VertexId>{0, 1, 2, 0, 2, 3});
+  EXPECT_TRUE(check(m).ok());
+}
+
+TEST(ValidateOverlap, CliRefineRefusesTheStarOfDavid) {
+  // -r refuses an overlapping mesh as bad input (exit 2) before anything
+  // else runs, naming both triangles as numbered in the file and their lines.
   const fs::path dir = fs::temp_directory_path() / ("deltamesh_overlap_" + std::to_string(::getpid()));
   fs::remove_all(dir);
   fs::create_directories(dir);
@@ -663,8 +682,9 @@ TEST(ValidateOverlap, CliRefusesTheStarOfDavidWithCheck) {
     return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   };
   std::string err;
-  EXPECT_EQ(run("-rC star", err), 5) << err;
-  EXPECT_NE(err.find("triangles 0 (0, 1, 2) and 1 (3, 4, 5) overlap"), std::string::npos) << err;
+  EXPECT_EQ(run("-rC star", err), 2) << err;
+  EXPECT_NE(err.find("star.ele:2: triangles 1 and 2 (line 3) overlap"), std::string::npos) << err;
+  EXPECT_FALSE(fs::exists(dir / "star.1.ele"));
   EXPECT_EQ(run("-rC ok", err), 0) << err;
   fs::remove_all(dir);
 }

@@ -42,6 +42,7 @@ struct Session {
   bool geojson = false;   // the input is GeoJSON
   InputName name;
   std::string input_path;  // the file being read, named by input errors
+  std::string ele_path;  // -r: the .ele read, named when its triangles overlap
   std::vector<std::string> inputs_read;  // every file read: outputs may not replace them
   void reading(const std::string& path) {
     input_path = path;
@@ -62,6 +63,8 @@ RunInput read_input(Session& s);
 
 // The 1-based line of segment `index` in a .poly file (0 when not found).
 std::size_t poly_segment_line(const std::string& path, std::size_t index);
+// The 1-based line of triangle `index` (0-based) in a .ele file (0 when not found).
+std::size_t ele_triangle_line(const std::string& path, std::size_t index);
 
 // Writes FILE.1.* and the --output / --svg files (-o2 nodes included);
 // returns the paths written.

@@ -112,6 +112,14 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "deltamesh: %s: segment %zu (vertices %zu-%zu) %s\n", s.input_path.c_str(),
                  e.segment() + base, e.a() + base, e.b() + base, e.problem().c_str());
     return dm::kExitInput;
+  } catch (const dm::OverlappingTriangles& e) {
+    // Ids and lines as in the user's .ele file.
+    const std::size_t base = static_cast<std::size_t>(s.first_index);
+    const std::string& ele = s.ele_path.empty() ? s.input_path : s.ele_path;
+    std::fprintf(stderr, "deltamesh: %s:%zu: triangles %zu and %zu (line %zu) %s; the mesh is refused\n", ele.c_str(),
+                 ele_triangle_line(ele, e.first()), e.first() + base, e.second() + base,
+                 ele_triangle_line(ele, e.second()), e.how().c_str());
+    return dm::kExitInput;
   } catch (const dm::InputError& e) {
     std::fprintf(stderr, "deltamesh: %s: %s\n", s.input_path.empty() ? cl.input.c_str() : s.input_path.c_str(),
                  e.what());

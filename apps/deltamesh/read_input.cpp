@@ -50,6 +50,7 @@ RunInput read_mesh(Session& s, const std::string& in) {
     r.pslg.regions = s.regions = std::move(p.regions);
   }
   s.reading(ele_path);
+  s.ele_path = ele_path;
   EleData ele = read_ele(ele_path, r.pslg.first_index);
   if (adapt) {
     const std::string mtr_path = in + ".mtr";
@@ -150,11 +151,16 @@ RunInput read_input(Session& s) {
 }
 
 // Data lines are those with something before any '#'.
-std::size_t poly_segment_line(const std::string& path, std::size_t index) {
+namespace {
+
+// The 1-based line of a Triangle file's data line number target(header)
+// (1-based, comments and blank lines not counted), where target is computed
+// from the first data line; 0 when the file is shorter.
+template <class Target>
+std::size_t data_line(const std::string& path, Target target_of) {
   std::FILE* f = std::fopen(path.c_str(), "r");
   if (!f) return 0;
   std::size_t line = 0, data = 0, target = 0;
-  long long vertices = -1;
   std::string text;
   for (int c = 0; c != EOF;) {
     text.clear();
@@ -162,10 +168,7 @@ std::size_t poly_segment_line(const std::string& path, std::size_t index) {
     ++line;
     text = text.substr(0, text.find('#'));
     if (text.find_first_not_of(" \t\r") == std::string::npos) continue;
-    if (data++ == 0) {
-      vertices = std::atoll(text.c_str());
-      target = static_cast<std::size_t>(std::max(0LL, vertices)) + 3 + index;  // header, vertices, segment header
-    }
+    if (data++ == 0) target = target_of(std::max(0LL, std::atoll(text.c_str())));
     if (data == target) {
       std::fclose(f);
       return line;
@@ -173,6 +176,17 @@ std::size_t poly_segment_line(const std::string& path, std::size_t index) {
   }
   std::fclose(f);
   return 0;
+}
+
+}  // namespace
+
+std::size_t poly_segment_line(const std::string& path, std::size_t index) {
+  // header, vertices, segment header, segments
+  return data_line(path, [&](long long vertices) { return static_cast<std::size_t>(vertices) + 3 + index; });
+}
+
+std::size_t ele_triangle_line(const std::string& path, std::size_t index) {
+  return data_line(path, [&](long long) { return index + 2; });  // header, triangles
 }
 
 }  // namespace deltamesh::cli

@@ -77,6 +77,23 @@ class IntersectingSegments : public InputError {
   std::size_t first_, second_;
 };
 
+// Two triangles of a mesh given as a triangle list (-r, mesh_from_triangles)
+// overlap or meet other than edge to edge. first() < second() are indices
+// into that list (0-based); the text says how they meet.
+class OverlappingTriangles : public InputError {
+ public:
+  OverlappingTriangles(std::size_t first, std::size_t second, const std::string& how)
+      : InputError("triangles " + std::to_string(first) + " and " + std::to_string(second) + " " + how, first),
+        first_(first), second_(second), how_(how) {}
+  std::size_t first() const { return first_; }
+  std::size_t second() const { return second_; }
+  const std::string& how() const { return how_; }
+
+ private:
+  std::size_t first_, second_;
+  std::string how_;
+};
+
 // A segment that cannot go into an existing mesh (insert_segments, -r with
 // -p): an endpoint out of range or in no triangle, a way outside the mesh,
 // or (strict) a crossing with a segment already there. `segment()` is its

@@ -101,6 +101,10 @@ struct RebuildOptions {
   // call make_constrained_delaunay before refine() if it may not be a CDT).
   CdtMethod method = CdtMethod::Fast;
   bool strict = false;
+  // Refuse triangles that overlap or meet other than edge to edge, wherever
+  // they are (OverlappingTriangles, naming both). Off only to build broken
+  // meshes on purpose (the validator's tests).
+  bool refuse_overlaps = true;
 };
 
 // Rebuilds a mesh from a triangle list, as Triangle's -r reads FILE.node and

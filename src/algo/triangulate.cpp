@@ -9,6 +9,7 @@
 
 #include "deltamesh/errors.hpp"
 #include "deltamesh/predicates.hpp"
+#include "algo/validate_overlap.hpp"
 #include "algo/vertex_data.hpp"
 #include "mesh/edge_rules.hpp"
 
@@ -306,8 +307,7 @@ Mesh mesh_from_triangles(const Pslg& nodes, std::span<const VertexId> triangles,
     if (j - i == 2) {
       const HalfEdgeId e = keys[i].half, f = keys[i + 1].half;
       if (mesh.origin(e) == mesh.origin(f))
-        throw InputError("triangles " + std::to_string(tri_of(e)) + " and " + std::to_string(tri_of(f)) +
-                         " overlap (both on the same side of " + name + ")");
+        throw OverlappingTriangles(tri_of(e), tri_of(f), "overlap (both on the same side of their common edge)");
       mesh.link(e, f);
     }
     i = j;
@@ -319,6 +319,17 @@ Mesh mesh_from_triangles(const Pslg& nodes, std::span<const VertexId> triangles,
     for (TriId t = 0; t < nt; ++t) mesh.set_triangle_area_bound(t, options.area_bounds[t]);
   }
   mesh.compact();
+  // Triangles that overlap without sharing an edge (separate components, a
+  // triangle inside another, crossing boundaries): the validator's sweep.
+  // Slots are still the list's indices here (nothing was deleted).
+  if (const auto found = options.refuse_overlaps ? detail::find_overlap(mesh) : std::nullopt) {
+    const TriangleConflict& c = found->conflict;
+    throw OverlappingTriangles(c.first, c.second,
+                               c.kind == TriangleConflict::Kind::Overlap
+                                   ? "overlap"
+                                   : "meet other than edge to edge (a vertex on the other's edge, or an edge "
+                                     "given twice without being shared)");
+  }
 
   // Segments: constrained where they are chains of edges, inserted where not.
   InsertSegmentsOptions iopt;
