@@ -92,10 +92,10 @@ void Refiner::record_boundary(HalfEdgeId e) {
   bnd_.push_back(b);
 }
 
-// Depth-first growth of the cavity from the half-edges on stack_ above
-// stack_base; boundary edges are recorded in counter-clockwise order.
-bool Refiner::grow(const Point& c, std::size_t stack_base) {
-  while (stack_.size() > stack_base) {
+// Depth-first growth of the cavity from the half-edges on stack_ until it
+// is empty; boundary edges are recorded in counter-clockwise order.
+bool Refiner::grow(const Point& c) {
+  while (!stack_.empty()) {
     const HalfEdgeId e = stack_.back();
     stack_.pop_back();
     const HalfEdgeId f = tw_[e];
@@ -130,22 +130,6 @@ bool Refiner::in_circumcircle(TriId t, const Point& p) const {
 }
 
 
-// Cavity of point c (inside seed or on one of its unconstrained edges).
-bool Refiner::cavity(const Point& c, TriId seed) {
-  begin_cavity();
-  add_to_cavity(seed);
-  stack_.push_back(3 * seed + 2);
-  stack_.push_back(3 * seed + 1);
-  stack_.push_back(3 * seed);
-  if (!grow(c, 0)) return false;
-  // A cavity grown through unconstrained (locally Delaunay) edges around a
-  // point inside it is star-shaped (exact incircle); only segments on its
-  // boundary can break that, so only then is every edge checked.
-  for (const BoundaryEdge& b : bnd_)
-    if (b.flags & kConstrained) return boundary_visible(c, 0, bnd_.size());
-  return true;
-}
-
 // Cavity of point m splitting the constrained edge e = (a -> b): side one
 // (e's triangle) then side two (its twin's), each boundary running b ... a
 // and a ... b respectively. Both triangles of e join only when m lies
@@ -159,7 +143,7 @@ bool Refiner::split_cavity(HalfEdgeId e, const Point& m) {
   add_to_cavity(tri_of(e));
   stack_.push_back(prev_edge(e));
   stack_.push_back(next_edge(e));
-  if (!grow(m, 0)) return false;
+  if (!grow(m)) return false;
   side_split_ = bnd_.size();
   const HalfEdgeId f = tw_[e];
   if (f != kNone) {
@@ -167,7 +151,7 @@ bool Refiner::split_cavity(HalfEdgeId e, const Point& m) {
     add_to_cavity(tri_of(f));
     stack_.push_back(prev_edge(f));
     stack_.push_back(next_edge(f));
-    if (!grow(m, 0)) return false;
+    if (!grow(m)) return false;
   }
   return boundary_visible(m, 0, bnd_.size());
 }

@@ -5,7 +5,7 @@
 //  - R1 (split_encroached_segment): a subsegment encroached by a vertex is
 //    split; encroached subsegments always go first, from a stack.
 //  - R2 (split_bad_triangle): a bad triangle (quality.cpp) gets a Steiner
-//    point (steiner.cpp); when that point would encroach subsegments
+//    point (steiner.hpp, steiner.cpp); when that point would encroach subsegments
 //    (encroachment.cpp) it is rejected and they are split instead.
 //  - The small-angle rules (small_angle.cpp) leave alone what cannot be
 //    improved, so that refinement terminates on every input; budgets and
@@ -17,7 +17,9 @@
 #include <cmath>
 #include <numbers>
 
+#include "algo/refine/cavity.hpp"
 #include "algo/refine/refiner.hpp"
+#include "algo/refine/steiner.hpp"
 #include "deltamesh/progress.hpp"
 
 namespace deltamesh::refinement {

@@ -1,5 +1,6 @@
 // Encroachment of segments in Delaunay refinement (Ruppert's R1), and where
-// an encroached subsegment is split.
+// an encroached subsegment is split. The test itself, Refiner::encroaches,
+// is inline in refiner.hpp: the best-point search calls it in its inner loop.
 //  - Diametral circle (J. Ruppert, "A Delaunay refinement algorithm for
 //    quality 2-dimensional mesh generation", J. Algorithms 1995): a vertex
 //    strictly inside the circle with the subsegment as diameter encroaches.
@@ -38,16 +39,6 @@ double diametral_dot(const Point& a, const Point& b, const Point& p) {
   const int ny = detail::expansion_product(2, day, 2, dby, py, work);
   const int n = detail::fast_expansion_sum_zeroelim(nx, px, ny, py, sum);
   return detail::signed_estimate(n, sum);
-}
-
-// Whether p encroaches upon subsegment ab: inside its diametral lens, or its
-// diametral circle (exact sign) with EncroachmentRule::DiametralCircle or -D.
-bool Refiner::encroaches(const Point& a, const Point& b, const Point& p) const {
-  if (!lens_) return diametral_dot(a, b, p) < 0;
-  const double ax = a.x - p.x, ay = a.y - p.y, bx = b.x - p.x, by = b.y - p.y;
-  const double dot = ax * bx + ay * by;
-  if (!(dot < 0)) return false;
-  return dot * dot > lens_cos2_ * (ax * ax + ay * ay) * (bx * bx + by * by);
 }
 
 // Subsegment e is encroached by the vertex opposite it on either side.

@@ -23,9 +23,9 @@ VertexId Refiner::new_vertex(const Point& p, std::uint32_t seg, int marker) {
   return v;
 }
 
-// Slot for fan triangle i: the cavity's slots first, then new ones.
-TriId Refiner::take_slot(std::size_t i, VertexId v) {
-  if (i < cav_.size()) return cav_[i];
+// A new triangle slot (vertices v, v, v until written), for a fan larger
+// than its cavity.
+TriId Refiner::new_slot(VertexId v) {
   if (!carry_bounds_ && m_.num_triangle_attributes() == 0) {
     // The arrays this refinement touches, grown by hand (Mesh::add_triangle
     // also handles bounds and attributes, at a cost per call).
@@ -81,7 +81,7 @@ void Refiner::insert_interior(const Point& c, TriId seed) {
   ++st_.interior_points;
   const std::size_t n = bnd_.size();
   fan_.resize(n);
-  for (std::size_t i = 0; i < n; ++i) fan_[i] = take_slot(i, v);
+  for (std::size_t i = 0; i < n; ++i) fan_[i] = i < cav_.size() ? cav_[i] : new_slot(v);
   // Vertices whose out-edge lies in the cavity get the fan's outer edge.
   for (std::size_t i = 0; i < n; ++i) {
     const HalfEdgeId oe = ve_[bnd_[i].a];
@@ -149,7 +149,7 @@ bool Refiner::split_segment(HalfEdgeId e, const Point* at, int depth) {
   fan_.resize(n);
   // Slots: side one uses its cavity slots first; new slots fill up as needed.
   // Any assignment works as long as every cavity slot is reused.
-  for (std::size_t i = 0; i < n; ++i) fan_[i] = take_slot(i, v);
+  for (std::size_t i = 0; i < n; ++i) fan_[i] = i < cav_.size() ? cav_[i] : new_slot(v);
   for (std::size_t i = 0; i < n; ++i) {
     const HalfEdgeId oe = ve_[bnd_[i].a];
     if (oe == kNone || in_cavity(tri_of(oe))) ve_[bnd_[i].a] = 3 * fan_[i] + 1;

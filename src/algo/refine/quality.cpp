@@ -25,11 +25,6 @@ double Refiner::area_bound(TriId t, const Point& a, const Point& b, const Point&
   return bound;
 }
 
-Eval Refiner::eval(TriId t) const {
-  const HalfEdgeId e = 3 * t;
-  return eval(t, pts_[tv_[e]], pts_[tv_[e + 1]], pts_[tv_[e + 2]]);
-}
-
 // Quality of triangle abc (counter-clockwise) under t's size bound.
 Eval Refiner::eval(TriId t, const Point& a, const Point& b, const Point& c) const {
   Eval ev;

@@ -87,13 +87,15 @@ class Refiner {
 
  private:
   // ---- driver.cpp: setup, the R1/R2 loop, decisions ----------------------
+  // (Methods declared inline are defined in the file that uses them, or in a
+  // header it includes, so that the compiler may inline them into the loop.)
   void setup();
   void reserve_for_area_bounds();
   void enforce_quality();
-  bool tick();
-  void split_encroached_segment();
-  void split_bad_triangle();
-  bool look_again_at_skipped();
+  inline bool tick();
+  inline void split_encroached_segment();
+  inline void split_bad_triangle();
+  inline bool look_again_at_skipped();
   struct Decision {
     enum Kind { Skip, Split, Insert } kind = Skip;
     Reason reason = Reason::None;
@@ -102,7 +104,7 @@ class Refiner {
     bool offcenter = false;
     std::vector<SubsegmentRef> segments;
   };
-  void decide(TriId t, Decision& d);
+  inline void decide(TriId t, Decision& d);
   void decide_segments(const std::vector<HalfEdgeId>& encroached, const Eval& ev, Decision& d);
   bool budget_left();
   std::uint32_t input_segment(VertexId a, VertexId b) const;
@@ -110,21 +112,33 @@ class Refiner {
   HalfEdgeId edge(VertexId a, VertexId b, HalfEdgeId hint) const;
 
   // ---- quality.cpp: the criteria, and queueing bad triangles -----------------
-  double area_bound(TriId t, const Point& a, const Point& b, const Point& c) const;
-  Eval eval(TriId t) const;
+  inline double area_bound(TriId t, const Point& a, const Point& b, const Point& c) const;
   Eval eval(TriId t, const Point& a, const Point& b, const Point& c) const;
+  Eval eval(TriId t) const {
+    const HalfEdgeId e = 3 * t;
+    return eval(t, pts_[tv_[e]], pts_[tv_[e + 1]], pts_[tv_[e + 2]]);
+  }
   void consider(TriId t);
   bool alive(const QueueEntry& e) const {
     return e.t < tv_.size() / 3 && tv_[3 * e.t] == e.a && tv_[3 * e.t + 1] == e.b && tv_[3 * e.t + 2] == e.c;
   }
 
   // ---- steiner.cpp: where a bad triangle is split ------------------------------
-  Point steiner_point(TriId t, const Eval& ev, bool& offcenter) const;
+  inline Point steiner_point(TriId t, const Eval& ev, bool& offcenter) const;  // steiner.hpp
   Point best_point(TriId t, const Eval& ev, const Point& primary);
   bool score(TriId t, const Point& c, double min2, int& bad, double& radius2);
 
   // ---- encroachment.cpp: encroachment, and where a segment is split -----------
-  bool encroaches(const Point& a, const Point& b, const Point& p) const;
+  // Whether p encroaches upon subsegment ab: inside its diametral lens
+  // (Shewchuk 2002), or its diametral circle (Ruppert 1995; exact sign) with
+  // EncroachmentRule::DiametralCircle or -D.
+  bool encroaches(const Point& a, const Point& b, const Point& p) const {
+    if (!lens_) return diametral_dot(a, b, p) < 0;
+    const double ax = a.x - p.x, ay = a.y - p.y, bx = b.x - p.x, by = b.y - p.y;
+    const double dot = ax * bx + ay * by;
+    if (!(dot < 0)) return false;
+    return dot * dot > lens_cos2_ * (ax * ax + ay * ay) * (bx * bx + by * by);
+  }
   bool encroached(HalfEdgeId e) const;
   bool splittable(HalfEdgeId e) const;
   void push_if_encroached(HalfEdgeId e, VertexId apex);
@@ -157,10 +171,10 @@ class Refiner {
     HalfEdgeId edge = kNone;  // Found: the edge c lies on (or kNone); Blocked: the segment crossed
   };
   Walk walk(TriId t, const Point& c) const;
-  bool cavity(const Point& c, TriId seed);
+  inline bool cavity(const Point& c, TriId seed);  // cavity.hpp
   bool split_cavity(HalfEdgeId e, const Point& m);
   bool in_circumcircle(TriId t, const Point& p) const;
-  bool grow(const Point& c, std::size_t stack_base);
+  bool grow(const Point& c);
   void record_boundary(HalfEdgeId e);
   bool boundary_visible(const Point& c, std::size_t from, std::size_t to) const;
   void begin_cavity() {
@@ -183,7 +197,7 @@ class Refiner {
   VertexId new_vertex(const Point& p, std::uint32_t seg, int marker);
   void insert_interior(const Point& c, TriId seed);
   bool split_segment(HalfEdgeId e, const Point* at = nullptr, int depth = 0);
-  TriId take_slot(std::size_t i, VertexId v);
+  TriId new_slot(VertexId v);
   void carry_attributes();
 
   // ---- stats.cpp: what is left when refinement ends ----------------------------

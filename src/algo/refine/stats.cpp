@@ -7,7 +7,7 @@
 
 namespace deltamesh::refinement {
 
-// Triangles appended by hand (insert.cpp's take_slot) join the mesh's count.
+// Triangles appended by hand (insert.cpp's new_slot) join the mesh's count.
 void Refiner::count_appended() {
   m_.set_live_real(m_.live_real() + appended_);
   appended_ = 0;

@@ -1,14 +1,14 @@
 // Steiner points of Delaunay refinement: where a bad triangle is split
 // (Ruppert's R2 and the size bounds).
-//  - The circumcentre (Ruppert 1995; Chew's algorithm).
-//  - Üngör's off-centre (A. Üngör, "Off-centers: a new type of Steiner points
-//    for computing size-optimal quality-guaranteed Delaunay triangulations",
-//    LATIN 2004): on the bisector of the shortest edge, no farther from it
-//    than the point where it subtends the angle bound.
-//  - The best point: the off-centre, or a point of the shortest edge's petal
-//    that leaves fewer skinny triangles, in the spirit of H. Erten and
-//    A. Üngör, "Quality triangulations with locally optimal Steiner points",
-//    SIAM J. Sci. Comput. 2009.
+//  - The circumcentre (Ruppert 1995) and Üngör's off-centre (A. Üngör,
+//    "Off-centers: a new type of Steiner points for computing size-optimal
+//    quality-guaranteed Delaunay triangulations", LATIN 2004: on the
+//    bisector of the shortest edge, no farther from it than the point where
+//    it subtends the angle bound): steiner.hpp, inline on R2's hot path.
+//  - The best point (here): the off-centre, or a point of the shortest
+//    edge's petal that leaves fewer skinny triangles, in the spirit of
+//    H. Erten and A. Üngör, "Quality triangulations with locally optimal
+//    Steiner points", SIAM J. Sci. Comput. 2009.
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -18,40 +18,14 @@
 
 namespace deltamesh::refinement {
 
-// The circumcentre of bad triangle t, or with SteinerRule::Offcenter/Best and
-// a skinny t its off-centre when that is nearer to the shortest edge PQ
-// (offcenter tells which). The circumcentre is computed relative to P with
-// the adaptive orient2d as its denominator, accurate for skinny triangles.
-Point Refiner::steiner_point(TriId t, const Eval& ev, bool& offcenter) const {
-  offcenter = false;
-  const HalfEdgeId e = 3 * t + ev.shortest;
-  const Point P = pts_[tv_[e]];
-  const Point Q = pts_[tv_[next_edge(e)]];
-  const Point R = pts_[tv_[prev_edge(e)]];
-  const double dx = Q.x - P.x, dy = Q.y - P.y, ex = R.x - P.x, ey = R.y - P.y;
-  const double l2 = dx * dx + dy * dy, e2 = ex * ex + ey * ey;
-  const double det = orient2d(P, Q, R);
-  const double den = 0.5 / det;
-  const double ux = (ey * l2 - dy * e2) * den, uy = (dx * e2 - ex * l2) * den;
-  if (opt_.steiner == SteinerRule::Circumcenter || !ev.skinny) return {P.x + ux, P.y + uy};
-  // Off-centre: along the bisector of PQ from its midpoint towards the circumcentre.
-  const double mx = ux - 0.5 * dx, my = uy - 0.5 * dy;
-  const double dc2 = mx * mx + my * my;
-  const double h = off_factor_ * std::sqrt(l2);
-  if (dc2 <= h * h) return {P.x + ux, P.y + uy};
-  offcenter = true;
-  const double s = h / std::sqrt(dc2);
-  return {P.x + 0.5 * dx + mx * s, P.y + 0.5 * dy + my * s};
-}
-
 // Scores candidate c for bad triangle t: its cavity must hold t (c inside
 // t's circumcircle), be star-shaped from c, touch no segment c encroaches, and
 // keep c at least sqrt(min2) away from every vertex (no edge shorter than
 // t's). `bad` counts the new triangles that would still be skinny (size is
 // left to the size bound's own splits); radius2 is the squared distance to
-// the nearest vertex. The cavity is
-// grown from t itself and checked in floating point: the chosen point is
-// located and its cavity built exactly afterwards by decide().
+// the nearest vertex. The cavity is grown from t itself and checked in
+// floating point: the chosen point is located and its cavity built exactly
+// afterwards by decide().
 bool Refiner::score(TriId t, const Point& c, double min2, int& bad, double& radius2) {
   const HalfEdgeId b0 = 3 * t;
   if (!(incircle(pts_[tv_[b0]], pts_[tv_[b0 + 1]], pts_[tv_[b0 + 2]], c) > 0)) return false;
@@ -60,7 +34,7 @@ bool Refiner::score(TriId t, const Point& c, double min2, int& bad, double& radi
   stack_.push_back(b0 + 2);
   stack_.push_back(b0 + 1);
   stack_.push_back(b0);
-  if (!grow(c, 0)) return false;
+  if (!grow(c)) return false;
   bad = 0;
   radius2 = INFINITY;
   for (const BoundaryEdge& b : bnd_) {
