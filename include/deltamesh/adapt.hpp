@@ -1,5 +1,5 @@
-// Mesh adaptation (seed §4): coarsening and refining a constrained Delaunay
-// mesh to a size field.
+// Mesh adaptation: coarsening and refining a constrained Delaunay mesh to a
+// size field (src/algo/adapt/; docs/internals.md maps the code).
 //
 //   deltamesh::SizeField h = [](double x, double) { return 0.01 + 0.19 * x; };
 //   deltamesh::AdaptStats st = deltamesh::adapt(mesh, h, {.refine = {.min_angle_deg = 30}});

@@ -1,7 +1,8 @@
-// Delaunay refinement (seed §3): Ruppert/Chew refinement of a carved
-// constrained Delaunay triangulation into a quality mesh, with off-centre
-// Steiner points, concentric-shell segment splitting and the small-angle
-// rules of §3.6 so that it terminates on every input.
+// Delaunay refinement: Ruppert/Chew refinement of a carved constrained
+// Delaunay triangulation into a quality mesh, with off-centre Steiner points,
+// concentric-shell segment splitting and small-angle rules (after Shewchuk
+// 2002 and Miller, Pav & Walkington 2003) so that it terminates on every
+// input. docs/internals.md maps each rule to the code (src/algo/refine/).
 //
 //   deltamesh::Mesh mesh = deltamesh::triangulate(pslg);   // carved CDT
 //   deltamesh::RefineStats st = deltamesh::refine(mesh, {.min_angle_deg = 30, .max_area = 0.01});
@@ -120,17 +121,17 @@ struct RefineOptions {
   // mesh is Delaunay within each connected region (diametral circles are
   // used whatever `encroachment` says).
   bool conforming_delaunay = false;
-  // §3.6: split segments on concentric shells around input vertices (at a
-  // hub, a vertex of three or more segments with wedges under 10°, every
-  // subsegment on a grid of power-of-two radii around it) and
-  // leave alone skinny triangles that sit in small input angles (< 60°),
-  // which is what makes refinement terminate on every input. Also left: the
-  // skinny triangles of thin channels between the sides of a spike (sides of
-  // a wedge under 10°, continued through bends under 30°, running within 10°
+  // Split segments on concentric shells around input vertices (at a hub, a
+  // vertex of three or more segments with wedges under 10°, every subsegment
+  // on a grid of power-of-two radii around it) and leave alone skinny
+  // triangles that sit in small input angles (< 60°), which is what makes
+  // refinement terminate on every input. Also left: the skinny triangles of
+  // thin channels between the sides of a spike (sides of a wedge under 10°,
+  // continued through bends under 30°, running within 10°
   // of antiparallel closer than 1/64 of their length), and encroached
   // subsegments whose split would only make such triangles. Turning it off
-  // runs Figure 18 literally (midpoint splits, every skinny triangle split);
-  // then only the budgets guarantee termination.
+  // runs Ruppert's algorithm literally (midpoint splits, every skinny
+  // triangle split); then only the budgets guarantee termination.
   bool small_angle_protection = true;
 
   // Maximum number of Steiner points (-S); kUnlimited, or kAutomaticBudget.
@@ -157,12 +158,12 @@ struct RefineStats {
   std::size_t interior_points = 0;   // ... inside the domain (R2 and area)
   std::size_t offcenters = 0;        // interior points at an off-centre rather than a circumcentre
   std::size_t rejected_points = 0;   // R2 points not inserted because they encroached segments
-  std::size_t small_angle_skips = 0; // splits refused by the §3.6 rules (events, not triangles)
+  std::size_t small_angle_skips = 0; // splits refused by the small-angle rules (events, not triangles)
   std::size_t failed_splits = 0;     // segment splits abandoned: the rounded split point did not fit
 
   // Triangles still below the angle bound when refinement ended, and why.
   std::size_t below_bound = 0;
-  std::size_t below_small_input_angle = 0;  // in an input angle < 60° or a spike's channel (§3.6): expected
+  std::size_t below_small_input_angle = 0;  // in an input angle < 60° or a spike's channel: expected
   std::size_t below_segment_protected = 0;  // needed a split that -Y/-YY forbids
   std::size_t below_budget = 0;             // left when a budget/time limit stopped refinement
   std::size_t below_out_of_reach = 0;       // left where refinement beyond kAutomaticBudgetAngle stalled

@@ -1,0 +1,159 @@
+// Point location and Bowyer-Watson cavities of Delaunay refinement
+// (A. Bowyer, "Computing Dirichlet tessellations", and D. F. Watson,
+// "Computing the n-dimensional Delaunay tessellation", Comput. J. 1981).
+// The cavity of a point (the triangles whose circumcircle strictly contains
+// it, grown without crossing segments) is found read-only, so the same
+// search tells whether the point encroaches a segment (R2's rejection)
+// before anything changes; insert.cpp commits it.
+#include "algo/refine/refiner.hpp"
+#include "deltamesh/predicates.hpp"
+
+namespace deltamesh::refinement {
+
+// Straight walk along the ray from t's centroid to c. Stops in the triangle
+// holding c, or at the first segment (or boundary edge) the ray crosses.
+// A vertex exactly on the ray is treated as lying to its left (a symbolic
+// perturbation), so each step is decided by one exact orientation.
+Refiner::Walk Refiner::walk(TriId t, const Point& c) const {
+  Walk w;
+  const HalfEdgeId b0 = 3 * t;
+  const Point& A = pts_[tv_[b0]];
+  const Point& B = pts_[tv_[b0 + 1]];
+  const Point& C = pts_[tv_[b0 + 2]];
+  {
+    const double o0 = orient2d(A, B, c), o1 = orient2d(B, C, c), o2 = orient2d(C, A, c);
+    if (o0 >= 0 && o1 >= 0 && o2 >= 0) {
+      w.tri = t;
+      if (c == A || c == B || c == C) {
+        w.kind = Walk::OnVertex;
+        return w;
+      }
+      w.kind = Walk::Found;
+      if (o0 == 0) w.edge = b0;
+      else if (o1 == 0) w.edge = b0 + 1;
+      else if (o2 == 0) w.edge = b0 + 2;
+      return w;
+    }
+  }
+  const Point o{(A.x + B.x + C.x) / 3.0, (A.y + B.y + C.y) / 3.0};
+  if (!(orient2d(A, B, o) > 0 && orient2d(B, C, o) > 0 && orient2d(C, A, o) > 0)) {
+    w.kind = Walk::Failed;
+    return w;
+  }
+  const bool left[3] = {orient2d(o, c, A) >= 0, orient2d(o, c, B) >= 0, orient2d(o, c, C) >= 0};
+  HalfEdgeId exit = kNone;
+  for (int i = 0; i < 3; ++i)
+    if (!left[i] && left[(i + 1) % 3]) exit = b0 + i;
+  if (exit == kNone) {
+    w.kind = Walk::Failed;
+    return w;
+  }
+  const std::size_t limit = tv_.size();
+  for (std::size_t steps = 0; steps < limit; ++steps) {
+    const HalfEdgeId f = tw_[exit];
+    if (f == kNone || (fl_[exit] & kConstrained)) {
+      w.kind = Walk::Blocked;
+      w.tri = tri_of(exit);
+      w.edge = exit;
+      return w;
+    }
+    // Entered triangle u through f = (x -> y), x left of the ray, y right.
+    const VertexId apex = tv_[prev_edge(f)];
+    const Point& W = pts_[apex];
+    const HalfEdgeId cand = orient2d(o, c, W) >= 0 ? next_edge(f) : prev_edge(f);
+    const Point& P = pts_[tv_[cand]];
+    const Point& Q = pts_[tv_[next_edge(cand)]];
+    const double oc = orient2d(P, Q, c);
+    if (oc >= 0) {
+      w.tri = tri_of(f);
+      if (c == P || c == Q || c == W) {
+        w.kind = Walk::OnVertex;
+        return w;
+      }
+      w.kind = Walk::Found;
+      if (oc == 0) w.edge = cand;
+      return w;
+    }
+    exit = cand;
+  }
+  w.kind = Walk::Failed;
+  return w;
+}
+
+void Refiner::record_boundary(HalfEdgeId e) {
+  BoundaryEdge b;
+  b.a = tv_[e];
+  b.b = tv_[next_edge(e)];
+  b.inner = e;
+  b.outer = tw_[e];
+  b.flags = fl_[e];
+  b.marker = has_markers_ ? mk_[e] : 0;
+  b.area_bound = carry_bounds_ ? m_.triangle_area_bound(tri_of(e)) : -1.0;
+  bnd_.push_back(b);
+}
+
+// Depth-first growth of the cavity from the half-edges on stack_ until it
+// is empty; boundary edges are recorded in counter-clockwise order.
+bool Refiner::grow(const Point& c) {
+  while (!stack_.empty()) {
+    const HalfEdgeId e = stack_.back();
+    stack_.pop_back();
+    const HalfEdgeId f = tw_[e];
+    if (f != kNone && !(fl_[e] & kConstrained)) {
+      const TriId u = tri_of(f);
+      const Point& pa = pts_[tv_[f]];
+      const Point& pb = pts_[tv_[next_edge(f)]];
+      const Point& pc = pts_[tv_[prev_edge(f)]];
+      if (incircle(pa, pb, pc, c) > 0) {
+        // The cavity's dual graph is a tree; meeting a triangle twice means
+        // the predicates and the mesh disagree: give up on this point.
+        if (in_cavity(u)) return false;
+        add_to_cavity(u);
+        stack_.push_back(prev_edge(f));
+        stack_.push_back(next_edge(f));
+        continue;
+      }
+    }
+    record_boundary(e);
+  }
+  return true;
+}
+
+bool Refiner::boundary_visible(const Point& c, std::size_t from, std::size_t to) const {
+  for (std::size_t i = from; i < to; ++i)
+    if (!(orient2d(pts_[bnd_[i].a], pts_[bnd_[i].b], c) > 0)) return false;
+  return true;
+}
+
+bool Refiner::in_circumcircle(TriId t, const Point& p) const {
+  return incircle(pts_[tv_[3 * t]], pts_[tv_[3 * t + 1]], pts_[tv_[3 * t + 2]], p) > 0;
+}
+
+
+// Cavity of point m splitting the constrained edge e = (a -> b): side one
+// (e's triangle) then side two (its twin's), each boundary running b ... a
+// and a ... b respectively. Both triangles of e join only when m lies
+// strictly inside their circumcircles (exact incircle), like every other
+// triangle: m is rounded and may lie off the segment's line, and a
+// far-side triangle whose circle misses it would keep an edge that is not
+// locally Delaunay against m. Then the split fails.
+bool Refiner::split_cavity(HalfEdgeId e, const Point& m) {
+  begin_cavity();
+  if (!in_circumcircle(tri_of(e), m)) return false;
+  add_to_cavity(tri_of(e));
+  stack_.push_back(prev_edge(e));
+  stack_.push_back(next_edge(e));
+  if (!grow(m)) return false;
+  side_split_ = bnd_.size();
+  const HalfEdgeId f = tw_[e];
+  if (f != kNone) {
+    if (!in_circumcircle(tri_of(f), m)) return false;
+    add_to_cavity(tri_of(f));
+    stack_.push_back(prev_edge(f));
+    stack_.push_back(next_edge(f));
+    if (!grow(m)) return false;
+  }
+  return boundary_visible(m, 0, bnd_.size());
+}
+
+}  // namespace deltamesh::refinement

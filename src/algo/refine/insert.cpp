@@ -1,0 +1,245 @@
+// Mesh updates of Delaunay refinement: a point inserted into its cavity
+// (cavity.cpp) as a fan of triangles, and a subsegment split in two with the
+// fans on both of its sides. The cavity's triangle slots are rewritten and
+// new ones appended; every new triangle is considered for the queue and its
+// subsegments for encroachment.
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "algo/refine/refiner.hpp"
+
+namespace deltamesh::refinement {
+
+VertexId Refiner::new_vertex(const Point& p, std::uint32_t seg, int marker) {
+  const auto v = static_cast<VertexId>(pts_.size());
+  pts_.push_back(p);
+  ve_.push_back(kNone);
+  seg_of_.push_back(seg);
+  if (!m_.vertex_markers().empty()) m_.vertex_markers().push_back(marker);
+  const std::size_t na = m_.num_vertex_attributes();
+  if (na > 0) m_.vertex_attributes().resize(m_.vertex_attributes().size() + na, 0.0);
+  ++st_.steiner_points;
+  return v;
+}
+
+// A new triangle slot (vertices v, v, v until written), for a fan larger
+// than its cavity.
+TriId Refiner::new_slot(VertexId v) {
+  if (!carry_bounds_ && m_.num_triangle_attributes() == 0) {
+    // The arrays this refinement touches, grown by hand (Mesh::add_triangle
+    // also handles bounds and attributes, at a cost per call).
+    const auto t = static_cast<TriId>(tv_.size() / 3);
+    tv_.resize(tv_.size() + 3, v);
+    tw_.resize(tw_.size() + 3, kNone);
+    fl_.resize(fl_.size() + 3, 0);
+    if (has_markers_) mk_.resize(mk_.size() + 3, 0);
+    ++appended_;
+    return t;
+  }
+  return m_.add_triangle(v, v, v);  // resizes every per-triangle array
+}
+
+// Triangle attributes of the fan fan_[0..n): each new triangle takes those
+// of the cavity triangle on its boundary edge, as area bounds do. A segment
+// split's cavity spans both sides of the segment, so slots (and the
+// attributes they held) pass from one region to the other; regional
+// attributes (-A) must not leak across it.
+void Refiner::carry_attributes() {
+  const std::size_t na = m_.num_triangle_attributes();
+  if (na == 0) return;
+  std::vector<double>& at = m_.triangle_attributes();
+  const std::size_t n = bnd_.size();
+  attr_scratch_.resize(n * na);
+  for (std::size_t i = 0; i < n; ++i)  // read every source before writing any slot
+    for (std::size_t k = 0; k < na; ++k) attr_scratch_[i * na + k] = at[tri_of(bnd_[i].inner) * na + k];
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t k = 0; k < na; ++k) at[fan_[i] * na + k] = attr_scratch_[i * na + k];
+}
+
+// Interpolated attributes for a new vertex: barycentric in the seed triangle.
+static void interpolate_attributes(Mesh& m, VertexId v, const VertexId (&tri)[3], const Point& p) {
+  const std::size_t na = m.num_vertex_attributes();
+  if (na == 0) return;
+  const Point& a = m.point(tri[0]);
+  const Point& b = m.point(tri[1]);
+  const Point& c = m.point(tri[2]);
+  const double det = (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
+  double wb = det != 0 ? ((p.x - a.x) * (c.y - a.y) - (p.y - a.y) * (c.x - a.x)) / det : 0.0;
+  double wc = det != 0 ? ((b.x - a.x) * (p.y - a.y) - (b.y - a.y) * (p.x - a.x)) / det : 0.0;
+  double wa = 1.0 - wb - wc;
+  std::vector<double>& at = m.vertex_attributes();
+  for (std::size_t k = 0; k < na; ++k)
+    at[v * na + k] = wa * at[tri[0] * na + k] + wb * at[tri[1] * na + k] + wc * at[tri[2] * na + k];
+}
+
+// Inserts c, whose cavity is in cav_/bnd_, as a fan of triangles.
+void Refiner::insert_interior(const Point& c, TriId seed) {
+  const VertexId seed_v[3] = {tv_[3 * seed], tv_[3 * seed + 1], tv_[3 * seed + 2]};
+  const VertexId v = new_vertex(c, kNone, 0);
+  interpolate_attributes(m_, v, seed_v, c);
+  ++st_.interior_points;
+  const std::size_t n = bnd_.size();
+  fan_.resize(n);
+  for (std::size_t i = 0; i < n; ++i) fan_[i] = i < cav_.size() ? cav_[i] : new_slot(v);
+  // Vertices whose out-edge lies in the cavity get the fan's outer edge.
+  for (std::size_t i = 0; i < n; ++i) {
+    const HalfEdgeId oe = ve_[bnd_[i].a];
+    if (oe == kNone || in_cavity(tri_of(oe))) ve_[bnd_[i].a] = 3 * fan_[i] + 1;
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    const TriId t = fan_[i];
+    const HalfEdgeId e = 3 * t;
+    const BoundaryEdge& b = bnd_[i];
+    tv_[e] = v;
+    tv_[e + 1] = b.a;
+    tv_[e + 2] = b.b;
+    tw_[e + 1] = b.outer;
+    if (b.outer != kNone) tw_[b.outer] = e + 1;
+    const HalfEdgeId nxt = 3 * fan_[i + 1 == n ? 0 : i + 1];
+    tw_[e + 2] = nxt;
+    tw_[nxt] = e + 2;
+    fl_[e] = 0;
+    fl_[e + 1] = b.flags;
+    fl_[e + 2] = 0;
+    if (has_markers_) {
+      mk_[e] = 0;
+      mk_[e + 1] = b.marker;
+      mk_[e + 2] = 0;
+    }
+    if (carry_bounds_) m_.set_triangle_area_bound(t, b.area_bound);
+  }
+  ve_[v] = 3 * fan_[0];
+  carry_attributes();
+  for (std::size_t i = 0; i < n; ++i) {
+    consider(fan_[i]);
+    if (bnd_[i].flags & kConstrained) push_if_encroached(3 * fan_[i] + 1, v);
+  }
+}
+
+// Splits the constrained edge e = (a -> b) at its split point (or at `at`,
+// for a mirrored split; depth counts the mirrors that led here).
+bool Refiner::split_segment(HalfEdgeId e, const Point* at, int depth) {
+  const VertexId a = tv_[e], b = tv_[next_edge(e)];
+  Point mp = at ? *at : segment_split_point(a, b);
+  const int marker = has_markers_ ? mk_[e] : 0;
+  const std::uint8_t flags = fl_[e];
+  const bool boundary = tw_[e] == kNone;
+  if ((boundary && !keep_split_inside(e, mp)) || !split_cavity(e, mp)) {
+    // The split point is off the segment's line by rounding and some
+    // neighbouring triangle is too flat to take it: leave this segment.
+    ++st_.failed_splits;
+    return false;
+  }
+  const std::uint32_t seg = segment_of(a, b);
+  int vmarker = marker != 0 ? marker : (boundary ? 1 : 0);
+  const VertexId v = new_vertex(mp, seg, vmarker);
+  {
+    const std::size_t na = m_.num_vertex_attributes();
+    if (na > 0) {
+      std::vector<double>& at = m_.vertex_attributes();
+      const double la = std::sqrt(dist2(mp, pts_[a])), lb = std::sqrt(dist2(mp, pts_[b]));
+      const double wa = la + lb > 0 ? lb / (la + lb) : 0.5;
+      for (std::size_t k = 0; k < na; ++k) at[v * na + k] = wa * at[a * na + k] + (1 - wa) * at[b * na + k];
+    }
+  }
+  ++st_.segment_splits;
+  const std::size_t n = bnd_.size();
+  const std::size_t n1 = side_split_;  // side one: boundary edges [0, n1), b ... a
+  fan_.resize(n);
+  // Slots: side one uses its cavity slots first; new slots fill up as needed.
+  // Any assignment works as long as every cavity slot is reused.
+  for (std::size_t i = 0; i < n; ++i) fan_[i] = i < cav_.size() ? cav_[i] : new_slot(v);
+  for (std::size_t i = 0; i < n; ++i) {
+    const HalfEdgeId oe = ve_[bnd_[i].a];
+    if (oe == kNone || in_cavity(tri_of(oe))) ve_[bnd_[i].a] = 3 * fan_[i] + 1;
+  }
+  if (boundary) {
+    const HalfEdgeId oe = ve_[a];
+    if (oe == kNone || in_cavity(tri_of(oe))) ve_[a] = 3 * fan_[n1 - 1] + 2;
+  }
+  auto write = [&](std::size_t i) {
+    const TriId t = fan_[i];
+    const HalfEdgeId f = 3 * t;
+    const BoundaryEdge& bd = bnd_[i];
+    tv_[f] = v;
+    tv_[f + 1] = bd.a;
+    tv_[f + 2] = bd.b;
+    tw_[f + 1] = bd.outer;
+    if (bd.outer != kNone) tw_[bd.outer] = f + 1;
+    fl_[f] = 0;
+    fl_[f + 1] = bd.flags;
+    fl_[f + 2] = 0;
+    if (has_markers_) {
+      mk_[f] = 0;
+      mk_[f + 1] = bd.marker;
+      mk_[f + 2] = 0;
+    }
+    if (carry_bounds_) m_.set_triangle_area_bound(t, bd.area_bound);
+  };
+  for (std::size_t i = 0; i < n; ++i) write(i);
+  auto chain = [&](std::size_t lo, std::size_t hi) {
+    for (std::size_t i = lo; i + 1 < hi; ++i) {
+      tw_[3 * fan_[i] + 2] = 3 * fan_[i + 1];
+      tw_[3 * fan_[i + 1]] = 3 * fan_[i] + 2;
+    }
+  };
+  chain(0, n1);
+  chain(n1, n);
+  auto seg_edge = [&](HalfEdgeId h) {
+    fl_[h] = flags;
+    if (has_markers_) mk_[h] = marker;
+  };
+  const HalfEdgeId mb1 = 3 * fan_[0], am1 = 3 * fan_[n1 - 1] + 2;  // m->b, a->m on side one
+  seg_edge(mb1);
+  seg_edge(am1);
+  if (boundary) {
+    tw_[mb1] = kNone;
+    tw_[am1] = kNone;
+  } else {
+    const HalfEdgeId ma2 = 3 * fan_[n1], bm2 = 3 * fan_[n - 1] + 2;  // m->a, b->m on side two
+    seg_edge(ma2);
+    seg_edge(bm2);
+    tw_[am1] = ma2;
+    tw_[ma2] = am1;
+    tw_[mb1] = bm2;
+    tw_[bm2] = mb1;
+  }
+  ve_[v] = mb1;
+  carry_attributes();
+  for (std::size_t i = 0; i < n; ++i) {
+    consider(fan_[i]);
+    if (bnd_[i].flags & kConstrained) push_if_encroached(3 * fan_[i] + 1, v);
+  }
+  // The two new subsegments against the apexes next to them.
+  push_if_encroached(mb1, tv_[prev_edge(mb1)]);
+  push_if_encroached(am1, tv_[prev_edge(am1)]);
+  if (!boundary) {
+    const HalfEdgeId ma2 = tw_[am1], bm2 = tw_[mb1];
+    push_if_encroached(ma2, tv_[prev_edge(ma2)]);
+    push_if_encroached(bm2, tv_[prev_edge(bm2)]);
+  }
+  // Segments that bound a small angle with this one get a vertex at the
+  // same distance from the apex: vertices at equal radii never encroach
+  // the partner's subsegments, where unequal ones would start a cascade of
+  // splits down to the width of the wedge.
+  if (opt_.small_angle_protection && seg != kNone && seg_small_[seg] && depth < 4) {
+    for (int end = 0; end < 2; ++end) {
+      if (!(seg_small_[seg] & (1 << end))) continue;
+      const VertexId apex = segs_[seg][end];
+      const double radius = std::sqrt(dist2(mp, pts_[apex]));
+      const double piece2 = std::min(dist2(mp, pts_[a]), dist2(mp, pts_[b]));
+      for (std::uint32_t partner : partners_[2 * seg + end]) {
+        if (partner == kNone) continue;
+        // Pieces shorter than the gap to the partner there do not encroach
+        // it: mirroring them would carry fine splits made for some other
+        // feature (a crossing further out) to where the partner needs none.
+        if (piece2 < gap2(seg, partner, apex, radius)) continue;
+        mirror_split(partner, apex, radius, depth + 1);
+      }
+    }
+  }
+  return true;
+}
+
+}  // namespace deltamesh::refinement

@@ -1,0 +1,65 @@
+// Quality criteria of Delaunay refinement: a triangle is bad when it is
+// skinny (its smallest angle below the bound: equivalently, its
+// circumradius-to-shortest-edge ratio above 1 / (2 sin bound), the measure of
+// Ruppert 1995 and Shewchuk 2002) or too large (area above the global,
+// regional or per-triangle bound or the max_area_at callback, or longest edge
+// above max_edge_at). Bad triangles go to the queue.
+#include <algorithm>
+#include <cmath>
+
+#include "algo/refine/refiner.hpp"
+
+namespace deltamesh::refinement {
+
+// The smallest area bound that applies to triangle t = abc (<= 0: none).
+double Refiner::area_bound(TriId t, const Point& a, const Point& b, const Point& c) const {
+  double bound = opt_.max_area;
+  if (has_area_bounds_) {
+    const double tb = m_.triangle_area_bound(t);
+    if (tb > 0 && (bound <= 0 || tb < bound)) bound = tb;
+  }
+  if (opt_.max_area_at) {
+    const double cb = opt_.max_area_at((a.x + b.x + c.x) / 3.0, (a.y + b.y + c.y) / 3.0);
+    if (cb > 0 && (bound <= 0 || cb < bound)) bound = cb;
+  }
+  return bound;
+}
+
+// Quality of triangle abc (counter-clockwise) under t's size bound.
+Eval Refiner::eval(TriId t, const Point& a, const Point& b, const Point& c) const {
+  Eval ev;
+  const double l0 = dist2(a, b), l1 = dist2(b, c), l2 = dist2(c, a);
+  const double cross = (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
+  double lo = l0, o1 = l1, o2 = l2;
+  int s = 0;
+  if (l1 < lo) lo = l1, o1 = l2, o2 = l0, s = 1;
+  if (l2 < lo) lo = l2, o1 = l0, o2 = l1, s = 2;
+  ev.shortest = s;
+  ev.shortest2 = lo;
+  // The smallest angle faces the shortest edge: sin = cross / (|o1| |o2|).
+  const double den = o1 * o2;
+  ev.skinny = cross * cross < sin2_bound_ * den;
+  if (ev.skinny) ev.sin2 = den > 0 ? cross * cross / den : 0.0;
+  const double bound = area_bound(t, a, b, c);
+  if (bound > 0 && 0.5 * cross > bound) ev.large = true;
+  if (opt_.max_edge_at) {
+    const double eb = opt_.max_edge_at((a.x + b.x + c.x) / 3.0, (a.y + b.y + c.y) / 3.0);
+    if (eb > 0 && std::max({l0, l1, l2}) > eb * eb) ev.large = true;
+  }
+  return ev;
+}
+
+// Queues triangle t when it is bad (skinny ones by the queue's order, the
+// others as too large); a rewritten slot forgets why it was left alone.
+void Refiner::consider(TriId t) {
+  if (t < why_.size()) why_[t] = Reason::None;
+  const Eval ev = eval(t);
+  if (!ev.skinny && !ev.large) return;
+  const QueueEntry q{t, tv_[3 * t], tv_[3 * t + 1], tv_[3 * t + 2]};
+  if (ev.skinny)
+    queue_.push_skinny(shortest_first_ ? shortest_edge_key(ev.shortest2) : worst_quality_key(ev.sin2, sin2_bound_), q);
+  else
+    queue_.push_large(q);
+}
+
+}  // namespace deltamesh::refinement

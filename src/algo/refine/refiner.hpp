@@ -1,0 +1,307 @@
+// The state of one Delaunay refinement, and its steps declared by concern.
+// Each group of methods is defined in the file named above it; docs/internals.md
+// maps the published rules to them.
+#pragma once
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cstddef>
+#include <cstdint>
+#include <utility>
+#include <vector>
+
+#include "algo/refine/queue.hpp"
+#include "deltamesh/mesh.hpp"
+#include "deltamesh/progress.hpp"
+#include "deltamesh/refine.hpp"
+
+namespace deltamesh::refinement {
+
+using Clock = std::chrono::steady_clock;
+
+inline double dist2(const Point& a, const Point& b) {
+  const double dx = a.x - b.x, dy = a.y - b.y;
+  return dx * dx + dy * dy;
+}
+
+// Exact sign of (a - p)·(b - p): negative iff p lies strictly inside the
+// circle with diameter ab (encroachment.cpp).
+double diametral_dot(const Point& a, const Point& b, const Point& p);
+
+// Wedges narrower than this get the mid-wedge small-angle rule and mirrored
+// segment splits (wider ones are refined; only the triangle holding the
+// input angle is left). Measured on the corpus.
+constexpr double kWedgeAngle = 10.0;
+
+// Why a bad triangle was left alone.
+enum class Reason : std::uint8_t { None, SmallAngle, Protected, Precision, Budget, OutOfReach };
+
+// A triangle judged by the quality criteria (quality.cpp).
+struct Eval {
+  bool skinny = false;
+  bool large = false;
+  int shortest = 0;       // local index i of the shortest edge (3t+i)
+  double sin2 = 1.0;      // sin^2 of the smallest angle
+  double shortest2 = 0;   // squared length of the shortest edge
+};
+
+// A triangle as the small-angle rules see it: a mesh triangle, or one a
+// segment split would make (its new vertex not in the mesh yet).
+struct TriView {
+  TriId t;                  // the mesh triangle (or the one split), for size bounds
+  VertexId v[3];            // counter-clockwise
+  Point p[3];
+  std::uint32_t seg[3];     // the segment a Steiner vertex lies on (kNone: none, or an input vertex)
+  bool constrained[3];      // edge v[i] -> v[i+1]
+};
+
+// A subsegment to split later: its vertices and a half-edge that may still be it.
+struct SubsegmentRef {
+  VertexId a, b;
+  HalfEdgeId hint;
+};
+
+// One edge of a cavity's boundary, copied before the cavity is rewritten.
+struct BoundaryEdge {
+  VertexId a, b;        // a -> b, counter-clockwise around the cavity
+  HalfEdgeId inner;     // the half-edge a -> b inside the cavity (valid until it is rewritten)
+  HalfEdgeId outer;     // the half-edge b -> a outside the cavity, or kNone
+  std::uint8_t flags;
+  int marker;
+  double area_bound;
+};
+
+class Refiner {
+ public:
+  Refiner(Mesh& mesh, const RefineOptions& opt, RefineStats& st)
+      : m_(mesh),
+        opt_(opt),
+        st_(st),
+        tv_(mesh.tri_v_mut()),
+        tw_(mesh.twin_mut()),
+        fl_(mesh.edge_flags_mut()),
+        mk_(mesh.edge_markers_mut()),
+        pts_(mesh.points_mut()),
+        ve_(mesh.vert_edge_mut()) {}
+
+  void run();
+
+ private:
+  // ---- driver.cpp: setup, the R1/R2 loop, decisions ----------------------
+  // (Methods declared inline are defined in the file that uses them, or in a
+  // header it includes, so that the compiler may inline them into the loop.)
+  void setup();
+  void set_bound(double theta);
+  void reserve_for_area_bounds();
+  void queue_encroached();
+  void refine_loop(ProgressReporter& progress);
+  inline bool tick();
+  inline void split_encroached_segment();
+  inline void split_bad_triangle();
+  inline bool look_again_at_skipped();
+  struct Decision {
+    enum Kind { Skip, Split, Insert } kind = Skip;
+    Reason reason = Reason::None;
+    bool transient = false;  // a skip that may change when neighbours change
+    Point c;
+    bool offcenter = false;
+    std::vector<SubsegmentRef> segments;
+  };
+  inline void decide(TriId t, Decision& d);
+  void decide_segments(const std::vector<HalfEdgeId>& encroached, const Eval& ev, Decision& d);
+  bool budget_left();
+  std::uint32_t input_segment(VertexId a, VertexId b) const;
+  std::uint32_t segment_of(VertexId a, VertexId b) const;
+  HalfEdgeId edge(VertexId a, VertexId b, HalfEdgeId hint) const;
+
+  // ---- beyond.cpp: bounds above kAutomaticBudgetAngle, with a progress watch --
+  void go_beyond(ProgressReporter& progress);
+  void checkpoint();
+  double smallest_sin2(bool outside_small_angles) const;
+
+  // ---- quality.cpp: the criteria, and queueing bad triangles -----------------
+  inline double area_bound(TriId t, const Point& a, const Point& b, const Point& c) const;
+  Eval eval(TriId t, const Point& a, const Point& b, const Point& c) const;
+  Eval eval(TriId t) const {
+    const HalfEdgeId e = 3 * t;
+    return eval(t, pts_[tv_[e]], pts_[tv_[e + 1]], pts_[tv_[e + 2]]);
+  }
+  void consider(TriId t);
+  bool alive(const QueueEntry& e) const {
+    return e.t < tv_.size() / 3 && tv_[3 * e.t] == e.a && tv_[3 * e.t + 1] == e.b && tv_[3 * e.t + 2] == e.c;
+  }
+
+  // ---- steiner.cpp: where a bad triangle is split ------------------------------
+  inline Point steiner_point(TriId t, const Eval& ev, bool& offcenter) const;  // steiner.hpp
+  Point best_point(TriId t, const Eval& ev, const Point& primary);
+  bool score(TriId t, const Point& c, double min2, int& bad, double& radius2);
+
+  // ---- encroachment.cpp: encroachment, and where a segment is split -----------
+  // Whether p encroaches upon subsegment ab: inside its diametral lens
+  // (Shewchuk 2002), or its diametral circle (Ruppert 1995; exact sign) with
+  // EncroachmentRule::DiametralCircle or -D.
+  bool encroaches(const Point& a, const Point& b, const Point& p) const {
+    if (!lens_) return diametral_dot(a, b, p) < 0;
+    const double ax = a.x - p.x, ay = a.y - p.y, bx = b.x - p.x, by = b.y - p.y;
+    const double dot = ax * bx + ay * by;
+    if (!(dot < 0)) return false;
+    return dot * dot > lens_cos2_ * (ax * ax + ay * ay) * (bx * bx + by * by);
+  }
+  bool encroached(HalfEdgeId e) const;
+  bool splittable(HalfEdgeId e) const;
+  void push_if_encroached(HalfEdgeId e, VertexId apex);
+  Point segment_split_point(VertexId a, VertexId b) const;
+  bool keep_split_inside(HalfEdgeId e, Point& m) const;
+
+  // ---- small_angle.cpp: the rules that make refinement terminate --------------
+  void find_small_angles();
+  void mark_spikes();
+  TriView view(TriId t) const;
+  bool faces_small_angle(TriId t, const Eval& ev) const { return faces_small_angle(view(t), ev); }
+  bool faces_small_angle(const TriView& tv, const Eval& ev, bool holding = true) const;
+  bool in_small_input_angle(const TriView& tv, const Eval& ev, bool holding) const;
+  void apexes(VertexId v, std::uint32_t seg, std::array<std::pair<VertexId, std::uint32_t>, 2>& small, int& n,
+              std::vector<std::pair<VertexId, std::uint32_t>>& many) const;
+  bool in_channel(const TriView& tv) const;
+  bool channel_pair(std::uint32_t sa, std::uint32_t sb, double& gap2) const;
+  bool near_channel(const Point& p, std::uint32_t sa, std::uint32_t sb, double gap2) const;
+  template <class F>
+  void spike_segments(VertexId v, std::uint32_t seg, F&& f) const;
+  bool left_alone(const TriView& tv, bool holding) const;
+  bool refuse_split_near_apex(HalfEdgeId e, const Eval& ev) const;
+  bool exempt_from_r1(HalfEdgeId e) const;
+  void mirror_split(std::uint32_t seg, VertexId apex, double radius, int depth);
+  double gap2(std::uint32_t s, std::uint32_t t, VertexId apex, double radius) const;
+
+  // ---- cavity.cpp: point location and Bowyer-Watson cavities -------------------
+  struct Walk {
+    enum Kind { Found, OnVertex, Blocked, Failed } kind;
+    TriId tri = kNone;
+    HalfEdgeId edge = kNone;  // Found: the edge c lies on (or kNone); Blocked: the segment crossed
+  };
+  Walk walk(TriId t, const Point& c) const;
+  inline bool cavity(const Point& c, TriId seed);  // cavity.hpp
+  bool split_cavity(HalfEdgeId e, const Point& m);
+  bool in_circumcircle(TriId t, const Point& p) const;
+  bool grow(const Point& c);
+  void record_boundary(HalfEdgeId e);
+  bool boundary_visible(const Point& c, std::size_t from, std::size_t to) const;
+  void begin_cavity() {
+    cav_.clear();
+    bnd_.clear();
+    stack_.clear();
+    if (++cav_stamp_ == 0) {
+      std::fill(in_cav_.begin(), in_cav_.end(), 0);
+      cav_stamp_ = 1;
+    }
+  }
+  void add_to_cavity(TriId t) {
+    if (t >= in_cav_.size()) in_cav_.resize(std::max<std::size_t>(t + 1, 2 * in_cav_.size()), 0);
+    in_cav_[t] = cav_stamp_;
+    cav_.push_back(t);
+  }
+  bool in_cavity(TriId t) const { return t < in_cav_.size() && in_cav_[t] == cav_stamp_; }
+
+  // ---- insert.cpp: mesh updates ------------------------------------------------
+  VertexId new_vertex(const Point& p, std::uint32_t seg, int marker);
+  void insert_interior(const Point& c, TriId seed);
+  bool split_segment(HalfEdgeId e, const Point* at = nullptr, int depth = 0);
+  TriId new_slot(VertexId v);
+  void carry_attributes();
+
+  // ---- stats.cpp: what is left when refinement ends ----------------------------
+  void remember_skip(TriId t, Reason r) {
+    if (t >= why_.size()) why_.resize(std::max<std::size_t>(t + 1, tv_.size() / 3), Reason::None);
+    why_[t] = r;
+  }
+  void count_appended();  // adds appended_ to the mesh's triangle count
+  void finish();
+
+  Mesh& m_;
+  const RefineOptions& opt_;
+  RefineStats& st_;
+  std::vector<VertexId>& tv_;
+  std::vector<HalfEdgeId>& tw_;
+  std::vector<std::uint8_t>& fl_;
+  std::vector<int>& mk_;
+  std::vector<Point>& pts_;
+  std::vector<HalfEdgeId>& ve_;
+
+  // Parameters.
+  double sin2_bound_ = 0;       // sin^2 of the angle bound (0: no angle criterion)
+  double off_factor_ = 0;       // off-centre distance from the shortest edge, per unit of its length
+  double lens_cos2_ = 0;        // lens: cos^2 of the smallest subtended angle that encroaches
+  bool lens_ = false;
+  bool has_area_bounds_ = false;  // refine for the mesh's per-triangle bounds
+  bool carry_bounds_ = false;     // the mesh has per-triangle bounds: keep them on new triangles
+  bool shortest_first_ = true;    // queue order
+  bool best_ = false;             // SteinerRule::Best: choose among candidates
+  bool sized_ = false;            // some size bound (area or edge length) applies
+  double bound_rad_ = 0;          // the angle bound in radians
+  bool has_markers_ = false;
+  double precision2_ = 0;       // squared shortest edge below which nothing is split
+  double shell_cos_ = -2;       // input vertices whose smallest segment angle has a larger cosine get shells
+  double small_cos2_ = 0.25;    // cos^2 of the largest input angle the small-angle rule treats as small
+  double channel_sin2_ = 0;     // sin^2 of the largest angle between the two sides of a channel
+  std::vector<float> apex_cos_; // per input vertex: cosine of its smallest angle between segments (-2: none)
+  std::size_t budget_ = kUnlimited;
+  std::size_t n_input_ = 0;
+
+  // Input segments (the constrained edges when refinement starts).
+  std::vector<std::array<VertexId, 2>> segs_;
+  std::vector<std::uint8_t> seg_small_;      // bit 0/1: endpoint 0/1 is a small-angle apex for it
+  // Per segment: kBoundarySeg (domain on one side only, to the left of
+  // segs_[s][0] -> segs_[s][1]) and kSpikeSeg (a boundary side of a spike,
+  // see small_angle.cpp).
+  static constexpr std::uint8_t kBoundarySeg = 1, kSpikeSeg = 2;
+  std::vector<std::uint8_t> seg_spike_;
+  bool has_spikes_ = false;
+  std::vector<std::uint32_t> adj_start_;     // CSR over input vertices
+  std::vector<std::pair<VertexId, std::uint32_t>> adj_;  // (other endpoint, segment)
+  std::vector<std::uint32_t> seg_of_;        // per Steiner vertex on a segment: its segment
+  // Per segment end (2 s + 0/1): the segments bounding a small domain angle
+  // with it at that end, whose splits are mirrored at the same radius.
+  std::vector<std::array<std::uint32_t, 2>> partners_;
+
+  BadQueue queue_;
+  std::vector<SubsegmentRef> encroached_;  // R1's stack
+  std::vector<QueueEntry> skipped_;  // transient skips, for another look
+  // Per triangle slot: why it was last left alone (reset when the slot is
+  // rewritten), so that finish() classifies what is left in linear time.
+  std::vector<Reason> why_;
+
+  // Scratch, reused by every insertion.
+  std::vector<TriId> cav_;
+  // Cavity membership in O(1): in_cav_[t] == cav_stamp_ while t is in cav_
+  // (a huge cocircular cavity made the linear search quadratic).
+  std::vector<std::uint32_t> in_cav_;
+  std::uint32_t cav_stamp_ = 0;
+  std::vector<BoundaryEdge> bnd_;
+  std::vector<HalfEdgeId> stack_;
+  std::vector<TriId> fan_;
+  std::vector<HalfEdgeId> enc_scratch_;
+  std::vector<double> attr_scratch_;
+  std::size_t side_split_ = 0;  // split cavities: boundary edges of side one
+  Decision decision_;
+
+  std::size_t appended_ = 0;  // triangles appended without Mesh::add_triangle
+  Clock::time_point start_;
+  std::size_t iterations_ = 0;
+  int requeues_ = 0;
+  std::size_t requeue_mark_ = SIZE_MAX;  // Steiner points when the last requeue round began
+  bool stopped_ = false;
+
+  // Progress watch (above the guaranteed range; beyond.cpp).
+  bool watch_ = false;
+  std::size_t watch_cap_ = 0;
+  std::size_t next_check_ = 0;
+  std::size_t check_interval_ = 0;
+  std::size_t window_start_ = 0;       // first vertex added since the last checkpoint
+  std::size_t best_bad_ = SIZE_MAX;    // fewest triangles below the bound at a checkpoint
+  double best_sin2_ = -1;              // best smallest angle (sin^2) outside small input angles
+  int stale_checks_ = 0;
+  bool stalled_ = false;
+  bool beyond_ = false;                // the bound is above kAutomaticBudgetAngle
+};
+
+}  // namespace deltamesh::refinement

@@ -1,0 +1,411 @@
+// The small-angle rules of Delaunay refinement: without them, Ruppert's
+// algorithm need not terminate when segments meet at angles under 60°.
+//  - Skinny triangles in a small input angle are left alone, after G. L.
+//    Miller, S. E. Pav, N. J. Walkington, "When and why Ruppert's algorithm
+//    works", IMR 2003: one whose shortest edge joins two segments meeting at
+//    a small angle (wedges under kWedgeAngle), or that holds an input angle
+//    under the bound.
+//  - Segment splits that would cascade into a small angle are refused
+//    (J. R. Shewchuk, "Delaunay refinement algorithms for triangular mesh
+//    generation", CGTA 2002), and splits in a narrow wedge are mirrored on
+//    its other side at the same radius (with the concentric shells of
+//    encroachment.cpp).
+//  - Thin channels between the two sides of a spike (a wedge under
+//    kWedgeAngle whose sides run on, nearly antiparallel, through gentle
+//    bends) are treated like the wedge itself: refining there cascades down
+//    the spike (a star polygon with 1e-4 rad spikes needs ~L/gap triangles
+//    per spike).
+//  - R1 yields (exempt_from_r1) where splitting would only make triangles
+//    these rules leave alone.
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "algo/refine/refiner.hpp"
+
+namespace deltamesh::refinement {
+
+// Concentric shells only around input vertices with a domain angle under
+// this (midpoints elsewhere). Measured on the corpus.
+constexpr double kShellApexAngle = 60.0;
+// Thin channels: the sides of a wedge under kWedgeAngle, continued through
+// input vertices that bend less than kChannelBend, bound a channel where two
+// of them run within kChannelParallel of each other, closer than
+// 1/kChannelGap of their lengths.
+constexpr double kChannelBend = 30.0;
+constexpr double kChannelParallel = 10.0;
+constexpr double kChannelGap = 64.0;
+
+// Small-angle apexes: two segments at an input vertex that bound a sector
+// of the domain narrower than 60° (the angle inside a hole or outside the
+// domain does not count), the thresholds of the rules, and the spikes.
+void Refiner::find_small_angles() {
+  shell_cos_ = std::cos(kShellApexAngle * std::numbers::pi / 180);
+  small_cos2_ = std::cos(kWedgeAngle * std::numbers::pi / 180) * std::cos(kWedgeAngle * std::numbers::pi / 180);
+  // A sector runs counter-clockwise from a constrained out-edge through
+  // unconstrained edges to the next constrained edge; its angle is the sum
+  // of the triangle corners in it.
+  const std::size_t ne = tv_.size();
+  seg_small_.assign(segs_.size(), 0);
+  partners_.assign(2 * segs_.size(), {kNone, kNone});
+  apex_cos_.assign(n_input_, -2.0f);
+  for (HalfEdgeId e0 = 0; e0 < ne; ++e0) {
+    const VertexId v = tv_[e0];
+    if (v >= n_input_ || !(fl_[e0] & kConstrained)) continue;
+    const Point& A = pts_[v];
+    double angle = 0;
+    HalfEdgeId g = e0;
+    bool closed = false;
+    for (std::size_t guard = 0; guard < 1u << 20; ++guard) {
+      const HalfEdgeId p = prev_edge(g);  // y -> v, the corner's other edge
+      const Point& X = pts_[tv_[next_edge(g)]];
+      const Point& Y = pts_[tv_[p]];
+      const double ux = X.x - A.x, uy = X.y - A.y, wx = Y.x - A.x, wy = Y.y - A.y;
+      angle += std::atan2(std::fabs(ux * wy - uy * wx), ux * wx + uy * wy);
+      if (fl_[p] & kConstrained) {
+        closed = true;
+        g = p;
+        break;
+      }
+      g = tw_[p];
+      if (g == kNone || g == e0) break;
+    }
+    if (!closed) continue;
+    const float c = static_cast<float>(std::cos(std::min(angle, std::numbers::pi)));
+    apex_cos_[v] = std::max(apex_cos_[v], c);
+    if (angle < std::numbers::pi / 3) {
+      const std::uint32_t s1 = input_segment(v, tv_[next_edge(e0)]);
+      const std::uint32_t s2 = input_segment(v, tv_[g]);
+      for (std::uint32_t sg : {s1, s2})
+        if (sg != kNone) seg_small_[sg] |= segs_[sg][0] == v ? 1 : 2;
+      // Mirrored splits only in the narrow wedges where cascades happen.
+      if (s1 != kNone && s2 != kNone && s1 != s2 && angle < kWedgeAngle * std::numbers::pi / 180) {
+        auto add = [&](std::uint32_t x, std::uint32_t y) {
+          auto& slot = partners_[2 * x + (segs_[x][0] == v ? 0 : 1)];
+          if (slot[0] == kNone) slot[0] = y;
+          else if (slot[1] == kNone && slot[0] != y) slot[1] = y;
+        };
+        add(s1, s2);
+        add(s2, s1);
+        seg_spike_[s1] |= kSpikeSeg;
+        seg_spike_[s2] |= kSpikeSeg;
+      }
+    }
+  }
+  mark_spikes();
+}
+
+// Spike sides: from the sides of the narrow wedges, along chains of
+// segments through input vertices of two segments that bend less than
+// kChannelBend (linear: every segment is marked once).
+void Refiner::mark_spikes() {
+  channel_sin2_ = std::sin(kChannelParallel * std::numbers::pi / 180);
+  channel_sin2_ *= channel_sin2_;
+  const double bend_cos = std::cos((180.0 - kChannelBend) * std::numbers::pi / 180);  // < 0
+  std::vector<std::uint32_t> work;
+  for (std::uint32_t s = 0; s < segs_.size(); ++s) {
+    if (!(seg_spike_[s] & kBoundarySeg)) seg_spike_[s] = 0;  // channels between boundary sides only
+    if (seg_spike_[s] & kSpikeSeg) work.push_back(s);
+  }
+  has_spikes_ = !work.empty();
+  while (!work.empty()) {
+    const std::uint32_t s = work.back();
+    work.pop_back();
+    for (const VertexId w : segs_[s]) {
+      if (adj_start_[w + 1] - adj_start_[w] != 2) continue;
+      const auto [x0, s0] = adj_[adj_start_[w]];
+      const auto [x1, s1] = adj_[adj_start_[w] + 1];
+      const std::uint32_t next = s0 == s ? s1 : s0;
+      if (next == s || seg_spike_[next] != kBoundarySeg) continue;
+      const Point& W = pts_[w];
+      const double ux = pts_[x0].x - W.x, uy = pts_[x0].y - W.y, vx = pts_[x1].x - W.x, vy = pts_[x1].y - W.y;
+      const double dot = ux * vx + uy * vy;
+      // The angle at w is over 180° - kChannelBend: cos below bend_cos.
+      if (!(dot < 0 && dot * dot > bend_cos * bend_cos * (ux * ux + uy * uy) * (vx * vx + vy * vy))) continue;
+      seg_spike_[next] |= kSpikeSeg;
+      work.push_back(next);
+    }
+  }
+}
+
+// Triangle t as the small-angle rules see it.
+TriView Refiner::view(TriId t) const {
+  TriView tv;
+  tv.t = t;
+  for (int i = 0; i < 3; ++i) {
+    const HalfEdgeId f = 3 * t + i;
+    tv.v[i] = tv_[f];
+    tv.p[i] = pts_[tv_[f]];
+    tv.seg[i] = tv_[f] >= n_input_ ? seg_of_[tv_[f]] : kNone;
+    tv.constrained[i] = (fl_[f] & kConstrained) != 0;
+  }
+  return tv;
+}
+
+// The segments an apex candidate list holds for vertex v: (apex, segment)
+// pairs such that v lies on the segment and the apex is its other end.
+void Refiner::apexes(VertexId v, std::uint32_t seg, std::array<std::pair<VertexId, std::uint32_t>, 2>& two,
+                     int& n, std::vector<std::pair<VertexId, std::uint32_t>>& many) const {
+  n = 0;
+  many.clear();
+  if (v >= n_input_) {
+    const std::uint32_t s = seg;
+    if (s == kNone || !seg_small_[s]) return;
+    if (seg_small_[s] & 1) two[n++] = {segs_[s][0], s};
+    if (seg_small_[s] & 2) two[n++] = {segs_[s][1], s};
+    return;
+  }
+  for (std::uint32_t i = adj_start_[v]; i < adj_start_[v + 1]; ++i) {
+    const auto [w, s] = adj_[i];
+    // v is an endpoint of s; the apex is the other endpoint w.
+    const std::uint8_t bit = segs_[s][0] == w ? 1 : 2;
+    if (seg_small_[s] & bit) many.push_back({w, s});
+  }
+}
+
+// A skinny triangle the small-angle rules leave alone: it lies in a small
+// input angle, or in a thin channel.
+// holding: also a triangle that holds an input angle under the bound.
+bool Refiner::faces_small_angle(const TriView& tv, const Eval& ev, bool holding) const {
+  if (in_small_input_angle(tv, ev, holding)) return true;
+  return has_spikes_ && in_channel(tv);
+}
+
+// After Miller, Pav and Walkington: the triangle's shortest edge joins two
+// different segments that meet at an apex at an angle below kWedgeAngle, and
+// the triangle lies in the wedge between them; or (holding) the triangle
+// holds an input angle below the bound between two segments.
+bool Refiner::in_small_input_angle(const TriView& tv, const Eval& ev, bool holding) const {
+  // The triangle holds an input angle below the bound between two segments:
+  // no split can remove that angle.
+  for (int i = 0; i < 3 && holding; ++i) {
+    const int j = (i + 1) % 3, k = (i + 2) % 3;
+    if (tv.v[i] >= n_input_ || !tv.constrained[i] || !tv.constrained[k]) continue;
+    const Point& A = tv.p[i];
+    const Point& B = tv.p[j];
+    const Point& C = tv.p[k];
+    const double ux = B.x - A.x, uy = B.y - A.y, wx = C.x - A.x, wy = C.y - A.y;
+    const double cross = ux * wy - uy * wx, l = (ux * ux + uy * uy) * (wx * wx + wy * wy);
+    if (ux * wx + uy * wy > 0 && cross * cross < sin2_bound_ * l) return true;
+  }
+  const int ip = ev.shortest, iq = (ev.shortest + 1) % 3, ir = (ev.shortest + 2) % 3;
+  const VertexId p = tv.v[ip], q = tv.v[iq];
+  std::array<std::pair<VertexId, std::uint32_t>, 2> tp, tq;
+  int np = 0, nq = 0;
+  thread_local std::vector<std::pair<VertexId, std::uint32_t>> mp, mq;
+  apexes(p, tv.seg[ip], tp, np, mp);
+  if (np == 0 && mp.empty()) return false;
+  apexes(q, tv.seg[iq], tq, nq, mq);
+  if (nq == 0 && mq.empty()) return false;
+  for (int i = 0; i < np; ++i) mp.push_back(tp[i]);
+  for (int i = 0; i < nq; ++i) mq.push_back(tq[i]);
+  for (const auto& [ap, sp] : mp)
+    for (const auto& [aq, sq] : mq) {
+      if (ap != aq || sp == sq) continue;
+      const Point& A = pts_[ap];
+      const VertexId op = segs_[sp][0] == ap ? segs_[sp][1] : segs_[sp][0];
+      const VertexId oq = segs_[sq][0] == aq ? segs_[sq][1] : segs_[sq][0];
+      const double ux = pts_[op].x - A.x, uy = pts_[op].y - A.y;
+      const double wx = pts_[oq].x - A.x, wy = pts_[oq].y - A.y;
+      const double dot = ux * wx + uy * wy;
+      if (!(dot > 0 && dot * dot > small_cos2_ * (ux * ux + uy * uy) * (wx * wx + wy * wy))) continue;
+      // ... and the triangle lies in the wedge between them: its third
+      // vertex is inside the (convex, < 60°) cone at the apex. A triangle
+      // beyond the wedge's mouth is skinny for other reasons and is split.
+      const VertexId r = tv.v[ir];
+      // On one of the two segments (split points are off their line by rounding).
+      if (r == op || r == oq || (r >= n_input_ && (tv.seg[ir] == sp || tv.seg[ir] == sq))) return true;
+      const Point& R = tv.p[ir];
+      const double rx = R.x - A.x, ry = R.y - A.y;
+      const double side = ux * wy - uy * wx;  // orientation of the cone u -> w
+      const double s1 = ux * ry - uy * rx, s2 = rx * wy - ry * wx;
+      if (side > 0 ? (s1 >= 0 && s2 >= 0) : (s1 <= 0 && s2 <= 0)) return true;
+    }
+  return false;
+}
+
+// The spike sides vertex v lies on (a Steiner vertex: its segment).
+template <class F>
+void Refiner::spike_segments(VertexId v, std::uint32_t seg, F&& f) const {
+  if (v >= n_input_) {
+    const std::uint32_t s = seg;
+    if (s != kNone && (seg_spike_[s] & kSpikeSeg)) f(s);
+    return;
+  }
+  for (std::uint32_t i = adj_start_[v]; i < adj_start_[v + 1]; ++i)
+    if (seg_spike_[adj_[i].second] & kSpikeSeg) f(adj_[i].second);
+}
+
+// Two spike sides that can bound a channel: boundary segments facing each
+// other, antiparallel within kChannelParallel (two pieces of one chain run
+// parallel; the sides of a notch face away, which near_channel rejects).
+// gap2: the squared width allowed, 1/kChannelGap of the shorter one.
+bool Refiner::channel_pair(std::uint32_t sa, std::uint32_t sb, double& gap2) const {
+  if (sa == sb) return false;
+  const auto [a0, a1] = segs_[sa];
+  const auto [b0, b1] = segs_[sb];
+  const double ux = pts_[a1].x - pts_[a0].x, uy = pts_[a1].y - pts_[a0].y;
+  const double wx = pts_[b1].x - pts_[b0].x, wy = pts_[b1].y - pts_[b0].y;
+  const double la2 = ux * ux + uy * uy, lb2 = wx * wx + wy * wy;
+  const double cross = ux * wy - uy * wx;
+  if (!(ux * wx + uy * wy < 0 && cross * cross < channel_sin2_ * la2 * lb2)) return false;
+  gap2 = std::min(la2, lb2) / (kChannelGap * kChannelGap);
+  return true;
+}
+
+// p lies in the strip between the two sides: on the domain side of both
+// lines (up to rounding) and closer than the allowed width to each.
+bool Refiner::near_channel(const Point& p, std::uint32_t sa, std::uint32_t sb, double gap2) const {
+  for (const std::uint32_t s : {sa, sb}) {
+    const Point& A = pts_[segs_[s][0]];
+    const Point& B = pts_[segs_[s][1]];
+    const double ux = B.x - A.x, uy = B.y - A.y;
+    const double l2 = ux * ux + uy * uy;
+    const double cross = ux * (p.y - A.y) - uy * (p.x - A.x);  // |u| times the signed distance
+    const double gap_l = std::sqrt(gap2 * l2);
+    if (cross < -1e-3 * gap_l || cross > gap_l) return false;
+  }
+  return true;
+}
+
+// A triangle in a thin channel between two spike sides (every vertex in
+// the channel, some vertex on each side): it cannot be made good without
+// refining the whole spike down to the channel's width, so it is left as
+// an input angle's triangle is.
+bool Refiner::in_channel(const TriView& tv) const {
+  std::array<std::uint32_t, 4> segs[3];
+  int n[3] = {0, 0, 0};
+  for (int i = 0; i < 3; ++i)
+    spike_segments(tv.v[i], tv.seg[i], [&](std::uint32_t s) {
+      if (n[i] < 4) segs[i][n[i]++] = s;
+    });
+  for (int i = 0; i < 3; ++i)
+    for (int j = i + 1; j < 3; ++j)
+      for (int x = 0; x < n[i]; ++x)
+        for (int y = 0; y < n[j]; ++y) {
+          double gap2;
+          const std::uint32_t sa = segs[i][x], sb = segs[j][y];
+          if (!channel_pair(sa, sb, gap2)) continue;
+          if (near_channel(tv.p[0], sa, sb, gap2) && near_channel(tv.p[1], sa, sb, gap2) &&
+              near_channel(tv.p[2], sa, sb, gap2))
+            return true;
+        }
+  return false;
+}
+
+// A bad triangle the small-angle rules leave as it is.
+bool Refiner::left_alone(const TriView& tv, bool holding) const {
+  const Eval ev = eval(tv.t, tv.p[0], tv.p[1], tv.p[2]);
+  return ev.skinny && !ev.large && faces_small_angle(tv, ev, holding);
+}
+
+
+// Shewchuk's rule against cascades at small angles (Shewchuk 2002): a
+// segment next to a small-angle apex is not split on behalf of a skinny
+// triangle when the split would make a subsegment shorter than the
+// triangle's shortest edge.
+bool Refiner::refuse_split_near_apex(HalfEdgeId e, const Eval& ev) const {
+  if (!opt_.small_angle_protection) return false;
+  const VertexId a = tv_[e], b = tv_[next_edge(e)];
+  const std::uint32_t s = segment_of(a, b);
+  if (s == kNone || !seg_small_[s]) return false;
+  const Point m = segment_split_point(a, b);
+  const double part = std::min(dist2(m, pts_[a]), dist2(m, pts_[b]));
+  return part < ev.shortest2;
+}
+
+// Rule R1 yields when splitting the subsegment would only make triangles
+// the small-angle rules leave alone anyway: on each side where a vertex
+// encroaches, both halves of its triangle, by the mid-wedge rule (wedges
+// under kWedgeAngle) or the channel rule. Splitting would start the cascade
+// those rules avoid (in a thin channel, every subsegment of a side is
+// encroached from across; a narrow wedge's side by the other side's end).
+// Not with conforming Delaunay, which needs every split.
+bool Refiner::exempt_from_r1(HalfEdgeId e) const {
+  if (!opt_.small_angle_protection || opt_.conforming_delaunay) return false;
+  const VertexId a = tv_[e], b = tv_[next_edge(e)];
+  const Point& A = pts_[a];
+  const Point& B = pts_[b];
+  const std::uint32_t seg = segment_of(a, b);
+  const Point m = segment_split_point(a, b);
+  const auto mv = static_cast<VertexId>(pts_.size());  // the vertex the split would add
+  bool any = false;
+  for (const HalfEdgeId f : {e, tw_[e]}) {
+    if (f == kNone || !encroaches(A, B, pts_[tv_[prev_edge(f)]])) continue;
+    const VertexId w = tv_[prev_edge(f)];
+    // Not where that vertex is itself an apex of angles under 60°: the
+    // shells around it refine there anyway, and the unsplit subsegment
+    // then drives a cascade into the apex (seen on ne110m_land at -q33).
+    if (w < n_input_ && apex_cos_[w] > shell_cos_) return false;
+    // f = x -> y with apex w becomes x -> m -> w and m -> y -> w.
+    const TriView whole = view(tri_of(f));
+    const int i = static_cast<int>(f % 3), j = (i + 1) % 3, k = (i + 2) % 3;
+    TriView h1 = whole, h2 = whole;
+    h1.v[j] = mv, h1.p[j] = m, h1.seg[j] = seg;
+    h1.constrained[j] = false;  // m -> w
+    h2.v[i] = mv, h2.p[i] = m, h2.seg[i] = seg;
+    h2.constrained[k] = false;  // w -> m
+    if (!left_alone(h1, false) || !left_alone(h2, false)) return false;
+    any = true;
+  }
+  return any;
+}
+
+// Squared distance between segments s and t (both ending at apex) at
+// distance `radius` from the apex.
+double Refiner::gap2(std::uint32_t s, std::uint32_t t, VertexId apex, double radius) const {
+  const Point& A = pts_[apex];
+  const Point& S = pts_[segs_[s][0] == apex ? segs_[s][1] : segs_[s][0]];
+  const Point& T = pts_[segs_[t][0] == apex ? segs_[t][1] : segs_[t][0]];
+  const double ux = S.x - A.x, uy = S.y - A.y, wx = T.x - A.x, wy = T.y - A.y;
+  const double cross = ux * wy - uy * wx;
+  return radius * radius * cross * cross / ((ux * ux + uy * uy) * (wx * wx + wy * wy));
+}
+
+// Mirrored splits in a narrow wedge: segment `seg` (one end at `apex`) is
+// split at distance `radius` from the apex, where its partner was just
+// split, unless a vertex of it is already about that far. Vertices at equal
+// radii never encroach the partner's subsegments (the idea of Shewchuk
+// 2002's concentric shells, applied to every split near the apex).
+void Refiner::mirror_split(std::uint32_t seg, VertexId apex, double radius, int depth) {
+  const VertexId other = segs_[seg][0] == apex ? segs_[seg][1] : segs_[seg][0];
+  const Point A = pts_[apex], O = pts_[other];
+  const double len = std::sqrt(dist2(A, O));
+  if (!(radius > 0) || radius >= len) return;
+  auto on_seg = [&](VertexId w) { return w == other || (w >= n_input_ && seg_of_[w] == seg); };
+  VertexId u = apex;
+  double ru = 0;
+  for (std::size_t steps = 0; steps < 100000; ++steps) {
+    // The next vertex of the segment beyond u.
+    VertexId next = kNone;
+    double rn = INFINITY;
+    HalfEdgeId hint = kNone;
+    auto consider_w = [&](VertexId w, HalfEdgeId h) {
+      if (!on_seg(w)) return;
+      const double r = std::sqrt(dist2(pts_[w], A));
+      if (r > ru && r < rn) rn = r, next = w, hint = h;
+    };
+    m_.for_each_out_edge(u, [&](HalfEdgeId h) {
+      if (fl_[h] & kConstrained) consider_w(tv_[next_edge(h)], h);
+      const HalfEdgeId p = prev_edge(h);
+      if (fl_[p] & kConstrained) consider_w(tv_[p], p);
+      return true;
+    });
+    if (next == kNone) return;
+    if (rn < radius) {
+      u = next;
+      ru = rn;
+      continue;
+    }
+    const double piece = rn - ru;
+    if (radius - ru < 0.05 * piece || rn - radius < 0.05 * piece) return;  // already (nearly) there
+    HalfEdgeId e = tv_[hint] == u ? hint : tw_[hint];
+    if (e == kNone || tv_[e] != u) e = edge(u, next, kNone);
+    if (e == kNone || !splittable(e) || !budget_left()) return;
+    const Point p{A.x + (O.x - A.x) * (radius / len), A.y + (O.y - A.y) * (radius / len)};
+    split_segment(e, &p, depth);
+    return;
+  }
+}
+
+}  // namespace deltamesh::refinement
