@@ -10,6 +10,7 @@
 
 #include "algo/adapt/common.hpp"
 #include "algo/cdt_builder.hpp"
+#include "core/angles.hpp"
 #include "deltamesh/adapt.hpp"
 #include "deltamesh/predicates.hpp"
 
@@ -22,15 +23,6 @@ using adaptation::dist;
 using adaptation::kMaxDegree;
 using adaptation::seconds_since;
 
-// Smallest angle of triangle (a, b, c) in degrees.
-double min_angle_of(const Point& a, const Point& b, const Point& c) {
-  const auto at = [](const Point& p, const Point& q, const Point& r) {
-    const double ux = q.x - p.x, uy = q.y - p.y, wx = r.x - p.x, wy = r.y - p.y;
-    return std::atan2(std::fabs(ux * wy - uy * wx), ux * wx + uy * wy);
-  };
-  return std::min({at(a, b, c), at(b, c, a), at(c, a, b)}) * (180.0 / std::numbers::pi);
-}
-
 // Smallest and mean smallest angle over the live real triangles.
 void angle_stats(const Mesh& m, double& lo, double& mean) {
   lo = 180.0;
@@ -39,7 +31,7 @@ void angle_stats(const Mesh& m, double& lo, double& mean) {
   for (TriId t = 0; t < m.num_triangle_slots(); ++t) {
     if (!m.is_real(t)) continue;
     const auto v = m.triangle(t);
-    const double a = min_angle_of(m.point(v[0]), m.point(v[1]), m.point(v[2]));
+    const double a = min_angle_deg(m.point(v[0]), m.point(v[1]), m.point(v[2]));
     lo = std::min(lo, a);
     sum += a;
     ++n;
@@ -111,7 +103,7 @@ class Smoother {
     for (std::size_t i = 0; i < k; ++i) {
       const Point &a = m_.point(link_[i]), &b = m_.point(link_[(i + 1) % k]);
       if (!(orient2d(q, a, b) > 0)) return false;
-      out.angle = std::min(out.angle, min_angle_of(q, a, b));
+      out.angle = std::min(out.angle, min_angle_deg(q, a, b));
       if (opt_.h) {
         const double h = h_at((q.x + a.x + b.x) / 3, (q.y + a.y + b.y) / 3);
         if (h > 0) out.size = std::max(out.size, std::max({dist(q, a), dist(a, b), dist(b, q)}) / h);
