@@ -2,6 +2,7 @@
 // switches. parse -> read -> run (the library's pipeline) -> write -> report.
 #include <cstdio>
 #include <exception>
+#include <memory>
 #include <new>
 #include <string>
 #include <vector>
@@ -37,6 +38,13 @@ dm::RunResult run_pipeline(Session& s, dm::RunInput input) {
 int execute(Session& s) {
   const auto t_total = Clock::now();
   dm::RunInput input = read_input(s);
+  std::unique_ptr<dm::TraceFile> trace;  // --trace: opened before the run, committed with the outputs
+  if (s.cl.trace_path) {
+    s.writing = true;  // a trace file that cannot be created is an output error
+    trace = std::make_unique<dm::TraceFile>(*s.cl.trace_path);
+    s.writing = false;
+    s.plan.trace = &trace->observer();
+  }
   dm::RunResult r = run_pipeline(s, std::move(input));
   s.progress.clear();
   s.phases.insert(s.phases.end(), r.phases.begin(), r.phases.end());
@@ -52,7 +60,11 @@ int execute(Session& s) {
 
   const auto t = Clock::now();
   s.writing = true;
-  const std::vector<std::string> written = write_outputs(s, r);
+  std::vector<std::string> written = write_outputs(s, r);
+  if (trace) {
+    trace->commit();
+    written.push_back(*s.cl.trace_path);
+  }
   add_phase(s, "write", t);
   add_phase(s, "total", t_total);
 

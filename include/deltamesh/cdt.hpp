@@ -46,6 +46,9 @@ struct CdtOptions {
   // each segment as soon as its endpoints are in (see CdtStats::chain_order).
   // The CDT is the same either way on input in general position.
   ChainOrder chain_order = ChainOrder::Auto;
+  // Reports each step (trace.hpp); with one, Fast does not use the chain
+  // order (segments are inserted after the vertices).
+  TraceObserver* trace = nullptr;
 };
 
 struct CdtStats {

@@ -13,6 +13,8 @@ struct DelaunayOptions {
   // Keep ghost triangles (a closed triangulation on the vertex at infinity),
   // for algorithms that go on inserting; otherwise the result is compacted.
   bool keep_ghosts = false;
+  // Reports each insertion and flip (trace.hpp); also set on the result.
+  TraceObserver* trace = nullptr;
 };
 
 struct DelaunayStats {

@@ -17,6 +17,8 @@
 #include "deltamesh/refine.hpp"
 #include "deltamesh/second_order.hpp"
 #include "deltamesh/svg.hpp"
+#include "deltamesh/trace.hpp"
+#include "deltamesh/trace_file.hpp"
 #include "deltamesh/switches.hpp"
 #include "deltamesh/triangle_io.hpp"
 #include "deltamesh/triangulate.hpp"

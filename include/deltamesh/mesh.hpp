@@ -12,6 +12,8 @@
 
 namespace deltamesh {
 
+class TraceObserver;  // deltamesh/trace.hpp
+
 // Where a point lies relative to the triangulation (result of Mesh::locate).
 struct Location {
   enum class Kind : std::uint8_t {
@@ -171,6 +173,11 @@ class Mesh {
   void set_live_real(std::size_t n) { live_real_ = n; }
   std::size_t live_real() const { return live_real_; }
 
+  // The observer the algorithms report their steps to (trace.hpp); null:
+  // none. Not owned; copies of the mesh share it.
+  TraceObserver* trace() const { return trace_; }
+  void set_trace(TraceObserver* t) { trace_ = t; }
+
   // Bytes held by the mesh's arrays (capacity), for memory reports.
   std::size_t memory_bytes() const;
 
@@ -225,6 +232,7 @@ class Mesh {
   std::size_t num_triangle_attributes_ = 0;
   std::size_t live_real_ = 0;
   bool compacted_ = false;
+  TraceObserver* trace_ = nullptr;
 };
 
 }  // namespace deltamesh

@@ -91,6 +91,9 @@ struct Plan {
   int verbose = 0;          // -V
   // Live progress of the long phases (see progress.hpp); empty: none.
   ProgressCallback progress;
+  // Every step of the run reported to this observer (trace.hpp; not owned),
+  // ending with an End event. Null: none.
+  TraceObserver* trace = nullptr;
 
   bool mesh_input() const { return input == InputKind::Mesh || input == InputKind::Adapt; }
   // Segments, holes and regions are used (-p, or -r -p).

@@ -43,6 +43,7 @@ struct CommandLine {
   bool voronoi = false;       // -v  FILE.1.v.node, FILE.1.v.edge
   bool geomview = false;      // -g  FILE.1.off
   std::optional<std::string> svg_path;  // --svg PATH
+  std::optional<std::string> trace_path;  // --trace PATH: every step as JSON Lines (docs/trace.md)
   std::vector<std::string> outputs;     // --output PATH (format from the extension); when given, only these
                                         // (and -e -n -v -g files) are written, not FILE.1.node/.ele/.poly
   bool msh_v22 = false;                 // --msh-version=2.2 (default 4.1)

@@ -46,6 +46,9 @@ struct TriangulateOptions {
   // then refinement's "refine" in Steiner points unless refine->progress is
   // set); see progress.hpp. Empty: no reports.
   ProgressCallback progress;
+  // Every step of every phase reported to this observer (trace.hpp); it
+  // stays attached to the result (Mesh::trace). Null: none.
+  TraceObserver* trace = nullptr;
 };
 
 struct TriangulateStats {

@@ -127,12 +127,14 @@ void CdtBuilder::process(const Piece& p, bool whole) {
       else if (whole)
         ++st_.segments_already_present;
       mark(tr.edge, p.seg);
+      trace_present(p.a, p.b);
       break;
     case TraceKind::OnVertex:
       ++st_.vertices_on_segments;
       if (crossings_.empty()) {
         if (flags_[tr.edge] & kConstrained) ++st_.overlaps_merged;
         mark(tr.edge, p.seg);
+        trace_present(p.a, tr.vertex);
       } else {
         recover(p.a, tr.vertex, p.seg);
       }
@@ -496,7 +498,7 @@ Mesh constrained_triangulation(const Pslg& pslg, const CdtOptions& options, CdtS
                        i);
   }
   auto t0 = Clock::now();
-  if (options.method == CdtMethod::Fast && !pslg.segments.empty() &&
+  if (options.method == CdtMethod::Fast && !pslg.segments.empty() && !options.trace &&
       (options.chain_order == ChainOrder::Always || (options.chain_order == ChainOrder::Auto && long_segments(pslg)))) {
     Mesh mesh;
     std::vector<VertexId> first_copy;
@@ -518,6 +520,7 @@ Mesh constrained_triangulation(const Pslg& pslg, const CdtOptions& options, CdtS
   DelaunayStats ds;
   DelaunayOptions dopt;
   dopt.keep_ghosts = true;
+  dopt.trace = options.trace;
   Mesh mesh = delaunay(pslg.points, dopt, &ds);
   st.duplicate_vertices = ds.duplicates;
   std::vector<VertexId> canonical;  // delaunay() keeps the first copy of equal points
@@ -529,6 +532,7 @@ Mesh constrained_triangulation(const Pslg& pslg, const CdtOptions& options, CdtS
   if (pslg.segments.empty()) return mesh;
 
   t0 = Clock::now();
+  if (options.trace) detail::TraceAccess::phase(*options.trace, "segments");
   {
     detail::CdtBuilder builder(mesh, pslg, options, st);
     auto canon = [&](VertexId v) { return canonical.empty() ? v : canonical[v]; };  // first copy

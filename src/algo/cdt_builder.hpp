@@ -86,6 +86,10 @@ class CdtBuilder {
   bool in_fallback_ = false;
   // constrained_lawson() (mesh/legalize.hpp) from `stack`, flips counted in the stats.
   void lawson_flips(std::vector<HalfEdgeId>& stack);
+  // Trace events (trace_hooks.hpp): a segment that was an edge already; the
+  // Fast method's retriangulated cavity (slots_).
+  void trace_present(VertexId a, VertexId b);
+  void trace_cavity(VertexId a, VertexId b);
   bool crosses(VertexId a, VertexId b, VertexId c, VertexId d) const;
 
   HalfEdgeId apex_edge(HalfEdgeId e) const { return prev_edge(e); }

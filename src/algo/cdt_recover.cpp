@@ -23,6 +23,24 @@ namespace {
 
 [[noreturn]] void internal(const char* where, const std::string& what) { throw InternalError(where, what); }
 
+TraceReason method_reason(CdtMethod m) {
+  switch (m) {
+    case CdtMethod::Fast: return TraceReason::Fast;
+    case CdtMethod::Ct: return TraceReason::Ct;
+    case CdtMethod::Lawson: return TraceReason::LawsonMethod;
+    case CdtMethod::Lifting: return TraceReason::LiftingMethod;
+  }
+  return TraceReason::None;
+}
+
+// A segment a-b is an edge now, after `flips` flips (or none: `why` Present).
+void trace_recovered(TraceObserver& o, VertexId a, VertexId b, TraceReason why, std::size_t flips) {
+  TraceEvent ev = trace_event(deltamesh::TraceKind::Recover, why);
+  ev.edge = {a, b, kNone, kNone};
+  ev.count = flips;
+  TraceAccess::plain(o, ev);
+}
+
 }  // namespace
 
 bool CdtBuilder::crosses(VertexId a, VertexId b, VertexId c, VertexId d) const {
@@ -34,12 +52,26 @@ bool CdtBuilder::crosses(VertexId a, VertexId b, VertexId c, VertexId d) const {
 
 void CdtBuilder::recover(VertexId a, VertexId b, std::uint32_t seg) {
   st_.edges_crossed += crossings_.size();
+  const std::size_t flips_before = st_.flips;
   switch (opt_.method) {
     case CdtMethod::Fast: recover_fast(a, b, seg); break;
     case CdtMethod::Ct: recover_flips(a, b, seg, false); break;
     case CdtMethod::Lawson: recover_flips(a, b, seg, true); break;
     case CdtMethod::Lifting: recover_lifting(a, b, seg); break;
   }
+  if (TraceObserver* o = mesh_.trace()) [[unlikely]]
+    trace_recovered(*o, a, b, method_reason(opt_.method), st_.flips - flips_before);
+}
+
+void CdtBuilder::trace_present(VertexId a, VertexId b) {
+  if (TraceObserver* o = mesh_.trace()) [[unlikely]]
+    trace_recovered(*o, a, b, TraceReason::Present, 0);
+}
+
+void CdtBuilder::trace_cavity(VertexId a, VertexId b) {
+  TraceEvent ev = trace_event(deltamesh::TraceKind::Retriangulate, TraceReason::Fast);
+  ev.edge = {a, b, kNone, kNone};
+  TraceAccess::slots(*mesh_.trace(), ev, tv_.data(), slots_);
 }
 
 // ---------------------------------------------------------------------------
@@ -231,9 +263,11 @@ void CdtBuilder::recover_fast(VertexId a, [[maybe_unused]] VertexId b, std::uint
   mark(top_left, seg);
   if (cut_vertices_.empty()) {
     if (next_slot != slots_.size()) internal("CdtBuilder::recover_fast", "cavity retriangulation left triangles over");
+    if (mesh_.trace()) [[unlikely]] trace_cavity(a, b);
     return;
   }
   for (std::size_t i = next_slot; i < slots_.size(); ++i) mesh_.remove_triangle(slots_[i]);
+  if (mesh_.trace()) [[unlikely]] trace_cavity(a, b);
   for (VertexId v : cut_vertices_) ve_[v] = kNone;
   for (VertexId v : cut_vertices_) {
     if (inserter_.insert_existing(v, tri_of(top_left)).vertex != v)
@@ -304,6 +338,7 @@ void CdtBuilder::recover_flips(VertexId a, VertexId b, std::uint32_t seg, bool l
     }
     failures = 0;
     mesh_.flip(e);
+    if (TraceObserver* o = mesh_.trace()) [[unlikely]] TraceAccess::flip_at(*o, TraceReason::Recovery, tv_.data(), e, f);
     ++st_.flips;
     flipped_.insert(edge_key(u, v));
     if (crosses(a, b, c, d)) queue_.emplace_back(c, d);
@@ -450,6 +485,7 @@ void CdtBuilder::recover_lifting(VertexId a, VertexId b, std::uint32_t seg) {
       break;
     }
     mesh_.flip(e);  // e's slot becomes (p, x, q), f's (q, y, p)
+    if (TraceObserver* o = mesh_.trace()) [[unlikely]] TraceAccess::flip_at(*o, TraceReason::Lifting, tv_.data(), e, f);
     ++st_.flips;
     consider(prev_edge(e));  // the new edge q -> p
     consider(e);

@@ -15,6 +15,7 @@
 #include "mesh/legalize.hpp"
 #include "mesh/locate.hpp"
 #include "mesh/split.hpp"
+#include "mesh/trace_hooks.hpp"
 
 namespace deltamesh {
 
@@ -32,7 +33,7 @@ double seconds_since(Clock::time_point t0) {
 class BulkBuilder {
  public:
   BulkBuilder(Mesh& mesh, std::size_t max_triangles)
-      : mesh_(mesh), used_(mesh.tri_v_mut().size()), p_(mesh.points().data()) {
+      : mesh_(mesh), used_(mesh.tri_v_mut().size()), p_(mesh.points().data()), trace_(mesh.trace()) {
     mesh.tri_v_mut().resize(3 * max_triangles);
     mesh.twin_mut().resize(3 * max_triangles);
     v_ = mesh.tri_v_mut().data();
@@ -78,6 +79,7 @@ class BulkBuilder {
     a.tv = v_;
     a.tw = tw_;
     a.pts = p_;
+    a.trace = trace_;
     return a;
   }
 
@@ -87,6 +89,8 @@ class BulkBuilder {
     const TriId t1 = static_cast<TriId>(used_ / 3);
     used_ += 6;
     detail::split_triangle_arrays<detail::kCarryTopologyOnly>(arrays(), t, v, t1, t1 + 1);
+    if (trace_) [[unlikely]]
+      detail::TraceAccess::slots(*trace_, detail::trace_insert(v, p_[v]), v_, {t, t1, t1 + 1});
     push(3 * t);
     push(3 * t1);
     push(3 * t1 + 3);
@@ -99,6 +103,8 @@ class BulkBuilder {
     const TriId t3 = static_cast<TriId>(used_ / 3);
     used_ += 6;
     const HalfEdgeId g0 = detail::split_edge_arrays<detail::kCarryTopologyOnly>(arrays(), e, v, t3, t3 + 1);
+    if (trace_) [[unlikely]]
+      detail::TraceAccess::slots(*trace_, detail::trace_insert(v, p_[v]), v_, {tri_of(e), tri_of(f), t3, t3 + 1});
     push(prev_edge(e));
     push(g0 + 1);
     push(prev_edge(f));
@@ -110,6 +116,7 @@ class BulkBuilder {
   VertexId* v_ = nullptr;
   HalfEdgeId* tw_ = nullptr;
   const Point* p_;
+  TraceObserver* trace_;
   std::vector<HalfEdgeId> stack_;
 };
 
@@ -122,7 +129,12 @@ Mesh delaunay(std::span<const Point> points, const DelaunayOptions& options, Del
   auto t0 = Clock::now();
   // Build on a copy in insertion order, so the walk touches nearby memory.
   Mesh mesh;
+  mesh.set_trace(options.trace);
   std::vector<VertexId> order = detail::hilbert_order(points, &mesh.points_mut());
+  if (options.trace) {  // vertices in insertion order until the renumbering below
+    detail::TraceAccess::phase(*options.trace, "delaunay");
+    detail::TraceAccess::points(*options.trace, 0, mesh.points());
+  }
 
   mesh.vert_edge_mut().assign(n, kNone);
   if (stats) stats->sort_seconds = seconds_since(t0);
@@ -176,6 +188,7 @@ Mesh delaunay(std::span<const Point> points, const DelaunayOptions& options, Del
   // Back to input numbering: vertex ids become input indices.
   for (VertexId& v : mesh.tri_v_mut())
     if (v < n) v = order[v];
+  if (options.trace) detail::TraceAccess::renumber(*options.trace, order, n);
   {
     std::vector<HalfEdgeId>& ve = mesh.vert_edge_mut();
     std::vector<HalfEdgeId> moved(n);
@@ -196,6 +209,7 @@ Mesh delaunay(std::span<const Point> points, const DelaunayOptions& options, Del
     for (const auto& [d, kept] : dups) first[order[kept]] = std::min(first[order[kept]], order[d]);
     for (VertexId& v : mesh.tri_v_mut())
       if (v < n) v = first[v];
+    if (options.trace) detail::TraceAccess::renumber(*options.trace, first, n);
     std::vector<HalfEdgeId>& ve = mesh.vert_edge_mut();
     for (const auto& [d, kept] : dups) {
       const VertexId k = order[kept];

@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "deltamesh/predicates.hpp"
+#include "mesh/trace_hooks.hpp"
 
 namespace deltamesh {
 
@@ -300,9 +301,11 @@ void carve_domain(Mesh& mesh, const Pslg& pslg, const DomainOptions& options, Do
     mesh.set_num_triangle_attributes(na);
   }
 
+  std::vector<TriId> carved;  // for the trace
   for (TriId t = 0; t < slots; ++t) {
     if (removed[t]) {
       mesh.remove_triangle(t);
+      if (mesh.trace()) carved.push_back(t);
       ++st.triangles_removed;
       continue;
     }
@@ -311,6 +314,7 @@ void carve_domain(Mesh& mesh, const Pslg& pslg, const DomainOptions& options, Do
     if (options.regional_attributes) mesh.triangle_attributes()[std::size_t{t} * na + attr_index] = s.attribute;
     if (options.regional_area_bounds && s.max_area > 0) mesh.set_triangle_area_bound(t, s.max_area);
   }
+  if (mesh.trace()) detail::trace_carved(mesh, carved);
   mesh.compact();
   st.triangles_kept = mesh.num_triangles();
   st.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -391,10 +395,12 @@ void carve_mesh(Mesh& mesh, const Pslg& pslg, const DomainOptions& options, Doma
     mesh.triangle_attributes().assign(slots, 0.0);
   }
   const std::size_t na = mesh.num_triangle_attributes();
+  std::vector<TriId> carved;  // for the trace
   for (TriId t = 0; t < slots; ++t) {
     const std::uint32_t r = regions.label[t];
     if (region_removed[r]) {
       mesh.remove_triangle(t);
+      if (mesh.trace()) carved.push_back(t);
       ++st.triangles_removed;
       continue;
     }
@@ -403,6 +409,7 @@ void carve_mesh(Mesh& mesh, const Pslg& pslg, const DomainOptions& options, Doma
     if (options.regional_attributes) mesh.triangle_attributes()[std::size_t{t} * na] = s.attribute;
     if (options.regional_area_bounds && s.max_area > 0) mesh.set_triangle_area_bound(t, s.max_area);
   }
+  if (mesh.trace()) detail::trace_carved(mesh, carved);
   if (st.triangles_removed > 0) mesh.compact();
   st.triangles_kept = mesh.num_triangles();
   st.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

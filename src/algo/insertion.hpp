@@ -33,7 +33,7 @@ class DelaunayInserter {
   // not lie exactly on the edge (a rounded segment intersection point). Both
   // halves of the split edge keep its flags and marker.
   Result insert_splitting_edge(HalfEdgeId e, VertexId v) {
-    insert_on_edge(e, v);
+    insert_on_edge(e, v, TraceReason::Crossing);
     legalize(v);
     return {v, tri_of(mesh_.out_edge(v))};
   }
@@ -77,14 +77,25 @@ class DelaunayInserter {
  private:
   void insert_in_triangle(TriId t, VertexId v) {
     const HalfEdgeId r = mesh_.split_triangle(t, v);  // v -> first vertex, in slot t
+    if (TraceObserver* o = mesh_.trace()) [[unlikely]]
+      TraceAccess::slots(*o, trace_insert(v, mesh_.point(v)), mesh_.triangle_vertices().data(),
+                         {t, tri_of(mesh_.twin(r - 1)), tri_of(mesh_.twin(r))});
     stack_.push_back(r - 2);
     stack_.push_back(mesh_.twin(r - 1) - 2);
     stack_.push_back(mesh_.twin(r) - 1);
   }
 
-  void insert_on_edge(HalfEdgeId e, VertexId v) {
+  void insert_on_edge(HalfEdgeId e, VertexId v, TraceReason why = TraceReason::Delaunay) {
     const HalfEdgeId f = mesh_.twin(e);
     const HalfEdgeId g0 = mesh_.split_edge(e, v);
+    if (TraceObserver* o = mesh_.trace()) [[unlikely]] {
+      const TriId t = tri_of(e), t3 = tri_of(g0);
+      const VertexId* tv = mesh_.triangle_vertices().data();
+      if (f == kNone)
+        TraceAccess::slots(*o, trace_insert(v, mesh_.point(v), why), tv, {t, t3});
+      else
+        TraceAccess::slots(*o, trace_insert(v, mesh_.point(v), why), tv, {t, t3, tri_of(f), tri_of(mesh_.twin(e))});
+    }
     stack_.push_back(prev_edge(e));
     stack_.push_back(g0 + 1);
     if (f != kNone) {

@@ -12,6 +12,7 @@
 #include "algo/validate_overlap.hpp"
 #include "algo/vertex_data.hpp"
 #include "mesh/edge_rules.hpp"
+#include "mesh/trace_hooks.hpp"
 
 namespace deltamesh {
 
@@ -183,6 +184,7 @@ Mesh triangulate(const Pslg& pslg, const TriangulateOptions& options, Triangulat
   if (!options.use_segments) {
     DelaunayOptions dopt;
     dopt.keep_ghosts = options.domain.keep_convex_hull;  // the hull edges are constrained below
+    dopt.trace = options.trace;
     DelaunayStats ds;
     {
       ProgressReporter rep(options.progress, "insert points", "points", pslg.points.size());
@@ -196,6 +198,7 @@ Mesh triangulate(const Pslg& pslg, const TriangulateOptions& options, Triangulat
       t = Clock::now();
       DomainOptions hull;
       hull.keep_convex_hull = true;
+      if (options.trace) detail::TraceAccess::phase(*options.trace, "carve");
       carve_domain(mesh, Pslg{}, hull, &st.domain);
       st.domain_seconds = seconds_since(t);
     }
@@ -203,6 +206,7 @@ Mesh triangulate(const Pslg& pslg, const TriangulateOptions& options, Triangulat
     CdtOptions copt;
     copt.method = options.method;
     copt.strict = options.strict;
+    copt.trace = options.trace;
     {
       ProgressReporter rep(options.progress, "insert points, recover segments", "segments", pslg.segments.size());
       mesh = constrained_triangulation(pslg, copt, &st.cdt);
@@ -222,6 +226,7 @@ Mesh triangulate(const Pslg& pslg, const TriangulateOptions& options, Triangulat
     carry_vertex_data(mesh, pslg, true);
 
     t = Clock::now();
+    if (options.trace) detail::TraceAccess::phase(*options.trace, "carve");
     {
       ProgressReporter rep(options.progress, "carve domain", "triangles", mesh.num_triangles());
       carve_domain(mesh, pslg, options.domain, &st.domain);
@@ -238,6 +243,7 @@ Mesh triangulate(const Pslg& pslg, const TriangulateOptions& options, Triangulat
   // from finish_vertex_markers below.
   if (options.refine && mesh.num_triangles() > 0) {
     t = Clock::now();
+    if (options.trace) detail::TraceAccess::phase(*options.trace, "refine");
     if (options.progress && !options.refine->progress) {
       RefineOptions ropt = *options.refine;
       ropt.progress = options.progress;

@@ -21,6 +21,7 @@ struct MeshArrays {
   int* markers = nullptr;           // segment marker (or id) per half-edge
   HalfEdgeId* out = nullptr;        // one outgoing half-edge per vertex
   const Point* pts = nullptr;
+  TraceObserver* trace = nullptr;   // the mesh's observer (trace_hooks.hpp), or null
 
   // The arrays of m (optional ones null while empty); valid until m's
   // arrays reallocate.
@@ -32,6 +33,7 @@ struct MeshArrays {
     a.markers = m.edge_markers_mut().empty() ? nullptr : m.edge_markers_mut().data();
     a.out = m.vert_edge_mut().data();
     a.pts = m.points().data();
+    a.trace = m.trace();
     return a;
   }
 };

@@ -2,6 +2,7 @@
 // first triangle of a closed triangulation.
 #include "mesh/legalize.hpp"
 #include "mesh/split.hpp"
+#include "mesh/trace_hooks.hpp"
 
 namespace deltamesh::detail {
 
@@ -26,6 +27,8 @@ void make_first_triangle(Mesh& mesh, VertexId a, VertexId b, VertexId c) {
     mesh.link(3 * g[i] + 1, 3 * g[(i + 2) % 3] + 2);
     mesh.set_out_edge(v[i], 3 * t + i);
   }
+  if (TraceObserver* o = mesh.trace())
+    TraceAccess::slots(*o, trace_insert(c, mesh.point(c)), mesh.triangle_vertices().data(), {t, g[0], g[1], g[2]});
 }
 
 }  // namespace deltamesh::detail

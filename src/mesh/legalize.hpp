@@ -15,6 +15,7 @@
 #include "deltamesh/mesh.hpp"
 #include "deltamesh/predicates.hpp"
 #include "mesh/flip.hpp"
+#include "mesh/trace_hooks.hpp"
 
 namespace deltamesh::detail {
 
@@ -40,7 +41,11 @@ class MeshTopology {
     const HalfEdgeId f = m_.twin(e);
     return {e, next_edge(e), prev_edge(e), f, f == kNone ? kNone : next_edge(f), f == kNone ? kNone : prev_edge(f)};
   }
-  void flip(const FlipQuad& q) { m_.flip(q.e); }
+  void flip(const FlipQuad& q, TraceReason why) {
+    m_.flip(q.e);
+    if (TraceObserver* t = m_.trace()) [[unlikely]]
+      TraceAccess::flip(*t, why, m_.triangle_vertices().data(), q);
+  }
 
  private:
   Mesh& m_;
@@ -65,7 +70,11 @@ class RawTopology {
     return in_circle_(a, b, c, d);
   }
   FlipQuad quad(HalfEdgeId e) const { return flip_quad(a_.tw, e); }
-  void flip(const FlipQuad& q) { flip_arrays<Carry>(a_, q); }
+  void flip(const FlipQuad& q, TraceReason why) {
+    flip_arrays<Carry>(a_, q);
+    if (a_.trace) [[unlikely]]
+      TraceAccess::flip(*a_.trace, why, a_.tv, q);
+  }
 
  private:
   MeshArrays a_;
@@ -105,7 +114,7 @@ inline LegalizeResult legalize_around_vertex(Topo& m, VertexId v, std::vector<Ha
     const VertexId a = m.origin(e), b = m.origin(q.e1), d = m.origin(q.f2);
     if (!breaks_edge(m, a, b, d, p)) continue;
     // (a, b, v) + (b, a, d) become (v, a, d) in e's slot and (d, b, v) in f's.
-    m.flip(q);
+    m.flip(q, TraceReason::Delaunay);
     ++r.flips;
     stack.push_back(q.e1);  // a -> d
     stack.push_back(q.f);   // d -> b
@@ -132,7 +141,7 @@ inline std::size_t constrained_lawson(Topo& m, std::vector<HalfEdgeId>& stack) {
     // d strictly inside the circle of abc, across ab: the quadrilateral is
     // strictly convex, so the flip is valid.
     if (!(m.in_circle(m.point(a), m.point(b), m.point(c), m.point(d)) > 0)) continue;
-    m.flip(q);  // e's slot becomes (c, a, d), f's (d, b, c)
+    m.flip(q, TraceReason::Lawson);  // e's slot becomes (c, a, d), f's (d, b, c)
     ++flips;
     stack.push_back(e);
     stack.push_back(q.e1);

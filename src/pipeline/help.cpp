@@ -97,6 +97,9 @@ Long options:
   --time-limit=S   stop refining after S seconds (exit code 3)
   --stats=json     print the mesh quality report as one JSON object
   --svg PATH       also write an SVG picture of the mesh
+  --trace PATH     write every step (insertions, flips and why, Steiner
+                   points and their rule, ...) as JSON Lines (docs/trace.md);
+                   for small inputs; render with scripts/trace_player.py
 Output formats:
   --output PATH    write the mesh to PATH, in the format its extension names:
                    .msh (Gmsh) .vtu .vtk (VTK) .svg .geojson .off, or a

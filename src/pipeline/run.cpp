@@ -10,6 +10,7 @@
 #include "deltamesh/pipeline.hpp"
 #include "deltamesh/second_order.hpp"
 #include "pipeline/steps.hpp"
+#include "mesh/trace_hooks.hpp"
 
 namespace deltamesh {
 
@@ -60,6 +61,18 @@ RefineOptions refine_options(const Plan& plan) {
 
 namespace {
 
+// A mesh read with -r or --adapt appears in the trace whole: its vertices,
+// then its triangles in one event (the rebuild itself is not traced).
+void trace_rebuilt_mesh(TraceObserver& o, Mesh& mesh) {
+  mesh.set_trace(&o);
+  detail::TraceAccess::phase(o, "read");
+  detail::TraceAccess::points(o, 0, mesh.points());
+  std::vector<TriId> all(mesh.num_triangle_slots());
+  for (TriId t = 0; t < all.size(); ++t) all[t] = t;
+  detail::TraceAccess::slots(o, detail::trace_event(TraceKind::Insert, TraceReason::None),
+                             mesh.triangle_vertices().data(), all);
+}
+
 // Points and PSLGs: triangulate() does the whole job up to markers.
 void triangulate_input(const Plan& plan, const RunInput& in, RunResult& res, Phases& phases) {
   const bool segments = plan.input == InputKind::Pslg;
@@ -75,6 +88,7 @@ void triangulate_input(const Plan& plan, const RunInput& in, RunResult& res, Pha
   topt.check_segments = plan.check && segments;
   if (plan.refine.requested()) topt.refine = plan.refine.options();
   topt.progress = plan.progress;
+  topt.trace = plan.trace;
   res.mesh = triangulate(in.pslg, topt, &res.stats);
   res.refined = topt.refine.has_value();
   const TriangulateStats& st = res.stats;
@@ -121,6 +135,7 @@ void process_mesh(const Plan& plan, RunInput& in, RunResult& res, Phases& phases
   res.read_vertices = res.mesh.num_vertices();
   res.read_triangles = res.mesh.num_triangles();
   Mesh& mesh = res.mesh;
+  if (plan.trace) trace_rebuilt_mesh(*plan.trace, mesh);
   if (plan.input == InputKind::Adapt) {
     // Sizes at the vertices of the mesh as rebuilt, then the CDT flips
     // refinement needs, coarsening and refinement to them.
@@ -132,7 +147,9 @@ void process_mesh(const Plan& plan, RunInput& in, RunResult& res, Phases& phases
                          std::to_string(in.pslg.points.size()) + " vertices");
       h = size_field_from_vertices(mesh, vertex_sizes(mesh, in.vertex_sizes));
     }
+    if (plan.trace) detail::TraceAccess::phase(*plan.trace, "flips");
     res.delaunay_flips = make_constrained_delaunay(mesh);
+    if (plan.trace) detail::TraceAccess::phase(*plan.trace, "adapt");
     AdaptOptions aopt;
     aopt.refine = refine_options(plan);
     if (plan.smooth >= 0) aopt.smooth_passes = plan.smooth;
@@ -145,9 +162,11 @@ void process_mesh(const Plan& plan, RunInput& in, RunResult& res, Phases& phases
     // Refinement needs a constrained Delaunay triangulation; a mesh from
     // another tool need not be one (on a CDT this flips nothing).
     auto t = Clock::now();
+    if (plan.trace) detail::TraceAccess::phase(*plan.trace, "flips");
     res.delaunay_flips = make_constrained_delaunay(mesh);
     phases.add("constrained Delaunay flips", t);
     t = Clock::now();
+    if (plan.trace) detail::TraceAccess::phase(*plan.trace, "refine");
     res.stats.refine = refine(mesh, refine_options(plan));
     finish_vertex_markers(mesh);
     res.refined = true;
@@ -155,6 +174,7 @@ void process_mesh(const Plan& plan, RunInput& in, RunResult& res, Phases& phases
   } else if (plan.smooth > 0) {
     // Smoothing keeps a constrained Delaunay triangulation: start from one.
     const auto t = Clock::now();
+    if (plan.trace) detail::TraceAccess::phase(*plan.trace, "flips");
     res.delaunay_flips = make_constrained_delaunay(mesh);
     phases.add("constrained Delaunay flips", t);
   }
@@ -168,6 +188,7 @@ void process_mesh(const Plan& plan, RunInput& in, RunResult& res, Phases& phases
 void smooth_mesh(const Plan& plan, std::size_t protect, RunResult& res, Phases& phases) {
   if (plan.smooth <= 0 || res.mesh.num_triangles() == 0) return;
   const auto t = Clock::now();
+  if (plan.trace) detail::TraceAccess::phase(*plan.trace, "smooth");
   SmoothOptions so;
   so.passes = plan.smooth;
   so.protect_first = protect;
@@ -218,6 +239,15 @@ RunResult run(const Plan& plan, RunInput input) {
     smooth_mesh(plan, input.pslg.points.size(), res, phases);  // the input's vertices stay
   }
   if (plan.jettison) res.mesh.remove_unused_vertices();
+  if (plan.trace) {
+    detail::TraceAccess::resync(*plan.trace, res.mesh.triangle_vertices(), "run");
+    TraceEvent end;
+    end.kind = TraceKind::End;
+    end.count = res.mesh.num_vertices();
+    end.edge[0] = static_cast<VertexId>(res.mesh.num_triangles());
+    detail::TraceAccess::plain(*plan.trace, end);
+    res.mesh.set_trace(nullptr);  // the observer may not outlive the run
+  }
   if (plan.check) check_result(plan, res, phases);
   // After -j and -C, which see the linear mesh.
   if (plan.order == 2) res.midside = add_midpoint_nodes(res.mesh);

@@ -145,7 +145,7 @@ constexpr std::string_view kFlagNames[] = {
     "--conforming-delaunay", "--voronoi", "--off", "--second-order", "--no-boundary-steiner", "--incremental",
     "--sweepline", "--vertical-cuts", "--no-exact", "--split-segments", "--smooth", "--overwrite"};
 constexpr std::string_view kValueNames[] = {
-    "--svg",   "--output",   "--msh-version",    "--region-property", "--area-property",
+    "--svg",   "--trace",   "--output",   "--msh-version",    "--region-property", "--area-property",
     "--min-angle", "--max-area", "--steiner-budget", "--cdt",            "--steiner",
     "--encroachment", "--order", "--time-limit",    "--stats",           "--fill"};
 
@@ -205,6 +205,8 @@ void apply_long_option(CommandLine& cl, std::string_view name_view, std::string_
   const std::string name(name_view);
   if (name == "--svg") {
     cl.svg_path = std::string(value);
+  } else if (name == "--trace") {
+    cl.trace_path = std::string(value);
   } else if (name == "--output") {
     const std::string v = std::string(value);
     if (!output_format_for(v))

@@ -11,6 +11,7 @@
 #include "algo/adapt/common.hpp"
 #include "deltamesh/adapt.hpp"
 #include "deltamesh/predicates.hpp"
+#include "mesh/trace_hooks.hpp"
 
 namespace deltamesh {
 
@@ -232,7 +233,10 @@ class Coarsener {
       note_flip(best);
       changed_.push_back(tri_of(best));
       changed_.push_back(tri_of(m_.twin(best)));
+      const HalfEdgeId best_twin = m_.twin(best);
       m_.flip(best);
+      if (TraceObserver* o = m_.trace()) [[unlikely]]
+        detail::TraceAccess::flip_at(*o, TraceReason::Coarsen, m_.triangle_vertices().data(), best, best_twin);
       ++st_.flips;
     }
   }
@@ -329,6 +333,7 @@ class Coarsener {
     }
     if (ok) {
       ++st_.removed;
+      if (TraceObserver* o = m_.trace()) [[unlikely]] trace_removed(*o, v);
     } else {
       refused_[v] = 1;
       ++st_.refused;
@@ -345,6 +350,15 @@ class Coarsener {
   // can an edge have stopped being Delaunay). Not from every edge around the
   // touched vertices: next to a vertex of degree D that costs O(D) per
   // removal, O(D^2) to coarsen its fan.
+  // Vertex v is gone: its old star's slots (changed_) hold the triangles
+  // that replace it.
+  void trace_removed(TraceObserver& o, VertexId v) {
+    TraceEvent ev = detail::trace_event(TraceKind::Remove, TraceReason::Coarsen);
+    ev.vertex = v;
+    ev.point = pt(v);
+    detail::TraceAccess::slots(o, ev, m_.triangle_vertices().data(), changed_);
+  }
+
   void lawson() {
     std::vector<HalfEdgeId>& stack = stack_;
     stack.clear();
@@ -363,6 +377,8 @@ class Coarsener {
       if (!(incircle(a, b, c, d) > 0)) continue;  // d inside also makes the quad strictly convex
       note_flip(e);
       m_.flip(e);
+      if (TraceObserver* o = m_.trace()) [[unlikely]]
+        detail::TraceAccess::flip_at(*o, TraceReason::Lawson, m_.triangle_vertices().data(), e, f);
       ++st_.flips;
       stack.push_back(e);
       stack.push_back(next_edge(e));

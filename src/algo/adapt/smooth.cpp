@@ -163,10 +163,21 @@ class Smoother {
           !(after.area <= std::max(1.0, before.area)))
         continue;
       m_.points_mut()[v] = q;
+      if (m_.trace()) [[unlikely]] trace_move(v, p);
       return 1;
     }
     ++st_.rejected;
     return 0;
+  }
+
+  void trace_move(VertexId v, const Point& from) {
+    TraceEvent ev = detail::trace_event(
+        TraceKind::Move, opt_.target == SmoothTarget::Laplacian ? TraceReason::Laplacian : TraceReason::Odt);
+    ev.vertex = v;
+    ev.point = m_.point(v);
+    ev.at = from;
+    ev.has_at = true;
+    detail::TraceAccess::plain(*m_.trace(), ev);
   }
 
   Mesh& m_;

@@ -56,7 +56,9 @@ void Refiner::go_beyond(ProgressReporter& progress) {
   if (!(stalled_ || st_.budget_exhausted || st_.time_exhausted)) return;
   if (smallest_sin2(false) >= kept_all && smallest_sin2(true) >= kept_outside) return;
   const RefineStats later = st_;
+  const std::size_t vertices_later = pts_.size();
   m_ = std::move(kept);  // the references to its arrays stay valid
+  if (trace_) [[unlikely]] detail::TraceAccess::rewind(*trace_, tv_, pts_.size(), vertices_later);
   why_ = kept_why;
   st_ = kept_st;
   st_.min_angle_deg = later.min_angle_deg;

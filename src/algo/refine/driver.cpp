@@ -230,6 +230,7 @@ void Refiner::split_encroached_segment() {
   if (e == kNone || !(fl_[e] & kConstrained) || !encroached(e) || !splittable(e)) return;
   if (exempt_from_r1(e)) return;
   if (!budget_left()) return;
+  if (trace_) [[unlikely]] trace_r1(e);
   split_segment(e);
 }
 
@@ -250,15 +251,18 @@ void Refiner::split_bad_triangle() {
     case Decision::Insert:
       if (!budget_left()) break;
       if (decision_.offcenter) ++st_.offcenters;
+      if (trace_) [[unlikely]] trace_r2(q.t, TraceKind::SplitTriangle, decision_.rule);
       insert_interior(decision_.c, cav_[0]);
       break;
     case Decision::Split: {
       ++st_.rejected_points;
+      if (trace_) [[unlikely]] trace_r2(q.t, TraceKind::Reject, TraceReason::Encroaches);
       bool split = false;
       for (const SubsegmentRef& r : decision_.segments) {
         const HalfEdgeId e = edge(r.a, r.b, r.hint);
         if (e == kNone) continue;
         if (!budget_left()) break;
+        if (trace_) [[unlikely]] trace_r2(q.t, TraceKind::SplitSegment, TraceReason::RejectedPoint);
         split |= split_segment(e);
       }
       // Requeue the triangle for another look, unless no split could be
@@ -308,6 +312,10 @@ void Refiner::decide(TriId t, Decision& d) {
     return;
   }
   if (ev.skinny && !ev.large && best_) d.c = best_point(t, ev, d.c);
+  d.rule = ev.skinny && !ev.large && best_ ? TraceReason::BestPoint
+           : d.offcenter                   ? TraceReason::OffCentre
+           : ev.skinny                     ? TraceReason::Circumcentre
+                                           : TraceReason::Area;
   const Walk w = walk(t, d.c);
   enc_scratch_.clear();
   switch (w.kind) {

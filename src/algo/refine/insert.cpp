@@ -111,6 +111,7 @@ void Refiner::insert_interior(const Point& c, TriId seed) {
   }
   ve_[v] = 3 * fan_[0];
   carry_attributes();
+  if (trace_) [[unlikely]] trace_fan(TraceKind::SplitTriangle, v, kNone, kNone);
   for (std::size_t i = 0; i < n; ++i) {
     consider(fan_[i]);
     if (bnd_[i].flags & kConstrained) push_if_encroached(3 * fan_[i] + 1, v);
@@ -207,6 +208,7 @@ bool Refiner::split_segment(HalfEdgeId e, const Point* at, int depth) {
   }
   ve_[v] = mb1;
   carry_attributes();
+  if (trace_) [[unlikely]] trace_fan(TraceKind::SplitSegment, v, a, b);
   for (std::size_t i = 0; i < n; ++i) {
     consider(fan_[i]);
     if (bnd_[i].flags & kConstrained) push_if_encroached(3 * fan_[i] + 1, v);
@@ -240,6 +242,47 @@ bool Refiner::split_segment(HalfEdgeId e, const Point* at, int depth) {
     }
   }
   return true;
+}
+
+// ---- the trace --------------------------------------------------------------
+
+// R1 for subsegment e: the apex that encroaches it is the cause.
+void Refiner::trace_r1(HalfEdgeId e) {
+  cause_ = detail::trace_event(TraceKind::SplitSegment, TraceReason::Encroached);
+  const Point& a = pts_[tv_[e]];
+  const Point& b = pts_[tv_[next_edge(e)]];
+  const VertexId c = tv_[prev_edge(e)];
+  const HalfEdgeId f = tw_[e];
+  cause_.other = encroaches(a, b, pts_[c]) || f == kNone ? c : tv_[prev_edge(f)];
+}
+
+// R2 for bad triangle t at decision_.c: inserted, rejected, or the cause
+// of a subsegment split.
+void Refiner::trace_r2(TriId t, TraceKind kind, TraceReason why) {
+  TraceEvent ev = detail::trace_event(kind, why);
+  ev.tri = {tv_[3 * t], tv_[3 * t + 1], tv_[3 * t + 2]};
+  if (kind != TraceKind::SplitTriangle) {
+    ev.at = decision_.c;
+    ev.has_at = true;
+  }
+  if (kind == TraceKind::Reject)
+    detail::TraceAccess::plain(*trace_, ev);
+  else
+    cause_ = ev;
+}
+
+// The fan of new vertex v written into fan_ (every cavity slot among them);
+// a-b: the subsegment split. The cause set before, else none given.
+void Refiner::trace_fan(TraceKind kind, VertexId v, VertexId a, VertexId b) {
+  TraceEvent ev = cause_.kind == kind ? cause_ : detail::trace_event(kind, TraceReason::None);
+  cause_ = TraceEvent{};
+  ev.vertex = v;
+  ev.point = pts_[v];
+  if (kind == TraceKind::SplitSegment) {
+    ev.edge = {a, b, kNone, kNone};
+    ev.tri = {kNone, kNone, kNone};
+  }
+  detail::TraceAccess::slots(*trace_, ev, tv_.data(), fan_);
 }
 
 }  // namespace deltamesh::refinement

@@ -14,6 +14,7 @@
 #include "deltamesh/mesh.hpp"
 #include "deltamesh/progress.hpp"
 #include "deltamesh/refine.hpp"
+#include "mesh/trace_hooks.hpp"
 
 namespace deltamesh::refinement {
 
@@ -82,7 +83,7 @@ class Refiner {
         fl_(mesh.edge_flags_mut()),
         mk_(mesh.edge_markers_mut()),
         pts_(mesh.points_mut()),
-        ve_(mesh.vert_edge_mut()) {}
+        ve_(mesh.vert_edge_mut()) { trace_ = mesh.trace(); }
 
   void run();
 
@@ -105,6 +106,7 @@ class Refiner {
     bool transient = false;  // a skip that may change when neighbours change
     Point c;
     bool offcenter = false;
+    TraceReason rule = TraceReason::None;  // which Steiner rule chose c (for the trace)
     std::vector<SubsegmentRef> segments;
   };
   inline void decide(TriId t, Decision& d);
@@ -218,6 +220,12 @@ class Refiner {
   void finish();
 
   Mesh& m_;
+  // ---- the trace (insert.cpp): what the next split reports as its cause ----
+  TraceObserver* trace_ = nullptr;
+  TraceEvent cause_;
+  void trace_r1(HalfEdgeId e);
+  void trace_r2(TriId t, TraceKind kind, TraceReason why);
+  void trace_fan(TraceKind kind, VertexId v, VertexId a, VertexId b);
   const RefineOptions& opt_;
   RefineStats& st_;
   std::vector<VertexId>& tv_;
