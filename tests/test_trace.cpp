@@ -111,8 +111,16 @@ void expect_valid(const Mesh& m) {
 }
 
 // Runs `switches` on `input` with a trace and compares its replay with the result.
+std::vector<std::string> args_of(const std::string& switches) {
+  std::vector<std::string> args;
+  std::istringstream in(switches);
+  for (std::string a; in >> a;) args.push_back(a);
+  args.push_back("x");
+  return args;
+}
+
 Replayed run_and_replay(const std::string& switches, RunInput input) {
-  Plan plan = parse_arguments({switches, "x"}).plan;
+  Plan plan = parse_arguments(args_of(switches)).plan;
   std::ostringstream out;
   JsonLinesTrace trace(out);
   plan.trace = &trace;
