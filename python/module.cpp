@@ -82,7 +82,7 @@ handle Triangle's files and the other formats. See docs/python.md.)";
   py::register_exception_translator(&translate_exception);
 
   m.def("triangulate", &triangulate_dict, py::arg("tri"), py::arg("opts") = "", py::kw_only(),
-        py::arg("max_area_fn") = py::none(), py::arg("max_edge_fn") = py::none(),
+        py::arg("max_area_fn") = py::none(), py::arg("max_edge_fn") = py::none(), py::arg("trace") = py::none(),
         R"(Triangle's form: triangulate(tri: dict, opts: str = '') -> dict.
 
 tri holds numpy arrays (or lists): vertices (n, 2) float, and optionally
@@ -113,6 +113,7 @@ complete, steiner_points, min_angle, refine details, warnings...).)");
         py::arg("encroachment") = "lens", py::arg("order") = "shortest", py::arg("time_limit") = py::none(),
         py::arg("jettison") = false, py::arg("second_order") = false, py::arg("edges") = false,
         py::arg("neighbors") = false, py::arg("check") = false, py::arg("markers") = true, py::arg("quiet") = false,
+        py::arg("trace") = py::none(),
         R"(Keyword form: triangulate(vertices, segments=None, holes=None, regions=None, *, ...) -> dict.
 
 Same result as Triangle's form. Segments (or triangles) switch on 'p'
@@ -124,7 +125,8 @@ jettison 'j', second_order 'o2', edges 'e', neighbors 'n', check 'C',
 markers=False 'B', quiet 'Q'; triangles=... is 'r'. fill, cdt, steiner,
 encroachment, order, time_limit are the command line's long options.
 max_area_fn(x, y) / max_edge_fn(x, y): size functions evaluated at triangle
-centroids (<= 0: no bound there); they refine like max_area.)");
+centroids (<= 0: no bound there); they refine like max_area. trace=PATH writes
+every step of the run as JSON Lines (docs/trace.md).)");
 
   m.def("adapt", &adapt_dict, py::arg("mesh"), py::arg("size"), py::arg("opts") = "q", py::kw_only(),
         py::arg("smooth") = 2,

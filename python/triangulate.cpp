@@ -3,6 +3,9 @@
 #include <cmath>
 #include <exception>
 #include <functional>
+#include <memory>
+#include <optional>
+#include <string>
 
 #include "bindings.hpp"
 
@@ -65,7 +68,15 @@ RunResult run_released(const Plan& plan, Input& in) {
   return run(plan, std::move(in.run));
 }
 
-py::dict run_plan(Input in, Plan plan, py::object max_area_fn, py::object max_edge_fn) {
+// trace=PATH (or '--trace PATH' in the switches): the run's steps as JSON
+// Lines (docs/trace.md), the file written whole or not at all.
+std::string trace_path_of(const py::object& trace, const std::optional<std::string>& from_switches) {
+  if (given(trace)) return py::str(trace).cast<std::string>();
+  return from_switches.value_or("");
+}
+
+py::dict run_plan(Input in, Plan plan, py::object max_area_fn, py::object max_edge_fn,
+                  const std::string& trace_path = "") {
   SizeCallback area{std::move(max_area_fn), "max_area_fn", {}, {}};
   SizeCallback edge{std::move(max_edge_fn), "max_edge_fn", {}, {}};
   if (plan.mesh_input() && !in.has_triangles)
@@ -78,9 +89,15 @@ py::dict run_plan(Input in, Plan plan, py::object max_area_fn, py::object max_ed
   Pslg seeds;  // holes and regions, written back with 'p'
   seeds.holes = in.run.pslg.holes;
   seeds.regions = in.run.pslg.regions;
+  std::unique_ptr<TraceFile> trace;
+  if (!trace_path.empty()) {
+    trace = std::make_unique<TraceFile>(trace_path);
+    plan.trace = &trace->observer();
+  }
   const RunResult res = run_released(plan, in);
   area.rethrow();
   edge.rethrow();
+  if (trace) trace->commit();
   raise_check_problems(res);
   py::dict out = mesh_dict(res, plan, seeds);
   out["stats"] = stats_dict(res);
@@ -102,9 +119,10 @@ py::dict run_plan(Input in, Plan plan, py::object max_area_fn, py::object max_ed
 }  // namespace
 
 py::dict triangulate_dict(const py::dict& tri, const std::string& opts, py::object max_area_fn,
-                          py::object max_edge_fn) {
+                          py::object max_edge_fn, py::object trace) {
   const CommandLine cl = parse_switches(opts);
-  return run_plan(read_input(arrays_from_dict(tri)), cl.plan, std::move(max_area_fn), std::move(max_edge_fn));
+  return run_plan(read_input(arrays_from_dict(tri)), cl.plan, std::move(max_area_fn), std::move(max_edge_fn),
+                  trace_path_of(trace, cl.trace_path));
 }
 
 // adapt(mesh, size, opts): the mesh rebuilt as for 'r' (with 'p' when it has
@@ -168,7 +186,7 @@ py::dict triangulate_kw(py::object vertices, py::object segments, py::object hol
                         bool ignore_holes, const std::string& fill, const std::string& cdt, bool strict,
                         const std::string& steiner, const std::string& encroachment, const std::string& order,
                         py::object time_limit, bool jettison, bool second_order, bool edges, bool neighbors, bool check,
-                        bool markers, bool quiet) {
+                        bool markers, bool quiet, py::object trace) {
   if (py::isinstance<py::dict>(vertices))
     throw py::value_error("vertices: got a dict; for Triangle's form call triangulate(dict, 'switches')");
   Keywords k;
@@ -200,7 +218,7 @@ py::dict triangulate_kw(py::object vertices, py::object segments, py::object hol
   const Plan plan = keyword_plan(k);
   const InputArrays a{vertices, vertex_markers, vertex_attributes,   segments,         segment_markers, holes,
                       regions,  triangles,      triangle_attributes, triangle_max_area};
-  return run_plan(read_input(a), plan, std::move(max_area_fn), std::move(max_edge_fn));
+  return run_plan(read_input(a), plan, std::move(max_area_fn), std::move(max_edge_fn), trace_path_of(trace, {}));
 }
 
 }  // namespace deltamesh::python

@@ -349,6 +349,69 @@ class RandomInputs(unittest.TestCase):
                                  r["below_budget"] + r["below_precision"])
 
 
+
+class Trace(unittest.TestCase):
+    """trace=PATH writes the run's steps (docs/trace.md); replayed by its
+    rules alone they give the returned mesh."""
+
+    @staticmethod
+    def replay(path):
+        import json
+        points, tris = {}, set()
+        with open(path) as f:
+            head = json.loads(f.readline())
+            assert head == {"trace": "deltamesh", "version": 1}, head
+            for line in f:
+                ev = json.loads(line)
+                if ev["ev"] == "points":
+                    for i, p in enumerate(ev["points"]):
+                        points[ev["first"] + i] = tuple(p)
+                if "v" in ev and "p" in ev:
+                    points[ev["v"]] = tuple(ev["p"])
+                if ev["ev"] == "renumber":
+                    new = {j: points[j] for j in range(ev["vertices"]) if j in points}
+                    done = set()
+                    for i, to in enumerate(ev["map"]):
+                        if to >= 0 and to not in done:
+                            new[to] = points[i]
+                            done.add(to)
+                    points = new
+                    tris = {tuple(ev["map"][v] for v in t) for t in tris}
+                    tris = {Trace.canon(t) for t in tris}
+                for t in ev.get("del", []):
+                    tris.remove(Trace.canon(t))
+                for t in ev.get("add", []):
+                    tris.add(Trace.canon(t))
+        return points, tris
+
+    @staticmethod
+    def canon(t):
+        i = min(range(3), key=lambda k: t[k])
+        return (t[i], t[(i + 1) % 3], t[(i + 2) % 3])
+
+    def test_trace_replays_to_the_mesh(self):
+        with tempfile.TemporaryDirectory() as d:
+            for form in ("dict", "keywords"):
+                path = os.path.join(d, form + ".jsonl")
+                if form == "dict":
+                    mesh = deltamesh.triangulate(square_with_hole(), "pq30a0.01Q", trace=path)
+                else:
+                    mesh = deltamesh.triangulate(**square_with_hole(), min_angle=30, max_area=0.01, quiet=True,
+                                                 trace=path)
+                deltamesh.validate(mesh)
+                points, tris = self.replay(path)
+                self.assertEqual(len(points), len(mesh["vertices"]))
+                for v, p in enumerate(mesh["vertices"]):
+                    self.assertEqual(points[v], (p[0], p[1]))
+                self.assertEqual(tris, {self.canon(tuple(int(x) for x in t)) for t in mesh["triangles"]})
+
+    def test_unwritable_trace_is_an_io_error_and_leaves_nothing(self):
+        with tempfile.TemporaryDirectory() as d:
+            path = os.path.join(d, "no", "such", "t.jsonl")
+            with self.assertRaises(deltamesh.IoError):
+                deltamesh.triangulate(square_with_hole(), "pQ", trace=path)
+            self.assertFalse(os.path.exists(os.path.join(d, "no")))
+
 class Garbage(unittest.TestCase):
     def test_random_malformed_inputs_raise_or_validate(self):
         """Seeded random shapes, dtypes and values (NaN, huge, negative indices,
