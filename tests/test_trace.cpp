@@ -246,6 +246,11 @@ TEST(TraceReplay, MeshInputRefinedAndAdapted) {
   adapt_in.size = [](double x, double) { return 0.02 + 0.2 * x; };
   const Replayed r = run_and_replay("-rQ --adapt", adapt_in);
   EXPECT_GT(r.counts.at("remove").size() + r.counts.at("split_triangle").size(), 0u);
+  // Sizes per vertex: a background mesh is copied from the traced one (the
+  // copy reports nothing).
+  RunInput per_vertex = in;
+  for (const Point& p : in.pslg.points) per_vertex.vertex_sizes.push_back(0.03 + 0.1 * p.x);
+  run_and_replay("-rQ --adapt", per_vertex);
 }
 
 TEST(TraceReplay, CorpusFiles) {

@@ -14,6 +14,24 @@ namespace deltamesh {
 
 class TraceObserver;  // deltamesh/trace.hpp
 
+// The observer a mesh reports to: moves carry it, copies do not (a copy is
+// another mesh, e.g. a background mesh or a kept state, and its changes are
+// not the traced run's).
+struct TraceLink {
+  TraceObserver* ptr = nullptr;
+  TraceLink() = default;
+  TraceLink(const TraceLink&) {}
+  TraceLink(TraceLink&& o) noexcept : ptr(o.ptr) {}
+  TraceLink& operator=(const TraceLink&) {
+    ptr = nullptr;
+    return *this;
+  }
+  TraceLink& operator=(TraceLink&& o) noexcept {
+    ptr = o.ptr;
+    return *this;
+  }
+};
+
 // Where a point lies relative to the triangulation (result of Mesh::locate).
 struct Location {
   enum class Kind : std::uint8_t {
@@ -174,9 +192,9 @@ class Mesh {
   std::size_t live_real() const { return live_real_; }
 
   // The observer the algorithms report their steps to (trace.hpp); null:
-  // none. Not owned; copies of the mesh share it.
-  TraceObserver* trace() const { return trace_; }
-  void set_trace(TraceObserver* t) { trace_ = t; }
+  // none. Not owned; moves carry it, copies do not (TraceLink).
+  TraceObserver* trace() const { return trace_.ptr; }
+  void set_trace(TraceObserver* t) { trace_.ptr = t; }
 
   // Bytes held by the mesh's arrays (capacity), for memory reports.
   std::size_t memory_bytes() const;
@@ -232,7 +250,7 @@ class Mesh {
   std::size_t num_triangle_attributes_ = 0;
   std::size_t live_real_ = 0;
   bool compacted_ = false;
-  TraceObserver* trace_ = nullptr;
+  TraceLink trace_;
 };
 
 }  // namespace deltamesh

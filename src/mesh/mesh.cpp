@@ -311,7 +311,7 @@ void Mesh::compact() {
     if (twin_[e] == kNone) vert_edge_[tri_v_[e]] = e;
   live_real_ = slots;
   compacted_ = true;
-  if (trace_) detail::TraceAccess::resync(*trace_, tri_v_, "Mesh::compact");  // slots renumbered
+  if (trace_.ptr) detail::TraceAccess::resync(*trace_.ptr, tri_v_, "Mesh::compact");  // slots renumbered
 }
 
 void Mesh::recount() {
@@ -351,7 +351,7 @@ std::vector<VertexId> Mesh::remove_unused_vertices() {
   vertex_attributes_.resize(std::size_t{next} * na);
   for (VertexId& v : tri_v_)
     if (v < n) v = map[v];
-  if (trace_) detail::TraceAccess::renumber(*trace_, map, next);
+  if (trace_.ptr) detail::TraceAccess::renumber(*trace_.ptr, map, next);
   return map;
 }
 

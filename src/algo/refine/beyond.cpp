@@ -58,6 +58,7 @@ void Refiner::go_beyond(ProgressReporter& progress) {
   const RefineStats later = st_;
   const std::size_t vertices_later = pts_.size();
   m_ = std::move(kept);  // the references to its arrays stay valid
+  m_.set_trace(trace_);  // (the copy had none)
   if (trace_) [[unlikely]] detail::TraceAccess::rewind(*trace_, tv_, pts_.size(), vertices_later);
   why_ = kept_why;
   st_ = kept_st;
