@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <charconv>
+#include <iterator>
 #include <string>
 #include <utility>
 
@@ -151,8 +152,19 @@ void TraceAccess::rewind(TraceObserver& o, std::span<const VertexId> tv, std::si
 }
 
 void TraceAccess::resync(TraceObserver& o, std::span<const VertexId> tv, const char* where) {
-  if (real_triangles(o.slots_) != real_triangles(tv))
-    throw InternalError(where, "the trace missed a change of the triangulation");
+  const std::vector<TraceTriangle> told = real_triangles(o.slots_), now = real_triangles(tv);
+  if (told != now) {
+    std::vector<TraceTriangle> missed, stale;
+    std::set_difference(now.begin(), now.end(), told.begin(), told.end(), std::back_inserter(missed));
+    std::set_difference(told.begin(), told.end(), now.begin(), now.end(), std::back_inserter(stale));
+    auto name = [](const std::vector<TraceTriangle>& ts) {
+      if (ts.empty()) return std::string("none");
+      return std::to_string(ts[0][0]) + "," + std::to_string(ts[0][1]) + "," + std::to_string(ts[0][2]);
+    };
+    throw InternalError(where, "the trace missed a change of the triangulation: " + std::to_string(missed.size()) +
+                                   " triangles not reported (first " + name(missed) + "), " +
+                                   std::to_string(stale.size()) + " reported but gone (first " + name(stale) + ")");
+  }
   o.slots_.assign(tv.begin(), tv.end());
 }
 
