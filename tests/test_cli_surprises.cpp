@@ -98,14 +98,16 @@ class Surprises : public ::testing::Test {
 #define EXPECT_LACKS(haystack, needle) \
   EXPECT_EQ((haystack).find(needle), std::string::npos) << "did not expect '" << (needle) << "' in:\n" << (haystack)
 
-const char* const kSquare = "4 2 0 0\n1 0 0\n2 1 0\n3 1 1\n4 0 1\n4 0\n1 1 2\n2 2 3\n3 3 4\n4 4 1\n";
+// The unit square, 1-based; kSquareHoles adds the hole count line.
+const std::string kSquare = "4 2 0 0\n1 0 0\n2 1 0\n3 1 1\n4 0 1\n4 0\n1 1 2\n2 2 3\n3 3 4\n4 4 1\n";
+const std::string kSquareHoles = kSquare + "0\n";
 
 // ---------------------------------------------------------------------------
 // Why 2: a misspelled long option is named as unknown, with a suggestion
 // (the Python switch-string case is in python/tests).
 
 TEST_F(Surprises, MisspelledLongOptionsWithAValueAreUnknown) {
-  write("sq.poly", kSquare);
+  write("sq.poly", kSquareHoles);
   for (const auto& [given, suggested] : {std::pair{"--time-limt=5", "--time-limit"}, std::pair{"--cdtt=ct", "--cdt"},
                                          std::pair{"--outptu=x.msh", "--output"}}) {
     const Result r = run(std::string("-p ") + given + " sq");
@@ -120,7 +122,7 @@ TEST_F(Surprises, MisspelledLongOptionsWithAValueAreUnknown) {
 // Why 4: no silent no-ops.
 
 TEST_F(Surprises, OptionsWithoutEffectSaySoOnce) {
-  write("sq.poly", kSquare);
+  write("sq.poly", kSquareHoles);
   const Result r = run("-pC --msh-version=2.2 --vtu-binary --geojson-segments --voronoi-overlay -Y --steiner=circumcenter "
                        "--region-property=name sq");
   ASSERT_EQ(r.code, 0) << r.err;
@@ -189,26 +191,28 @@ TEST_F(Surprises, RefiningAnAttributedMeshWithoutItsSegmentsWarns) {
 // region points identified.
 
 TEST_F(Surprises, AVertexErrorNamesTheFileLineAndNumber) {
-  write("bad.node", "# three points\n4 2 0 0\n1 0 0\n2 nan 0\n3 0 1\n4 1 1\n");
-  Result r = run("bad");
+  // A coordinate the predicates cannot take (beyond 2^200): the vertex as
+  // the file numbers it (2, 1-based; was "point 1"), and its line.
+  write("big.node", "# four points\n4 2 0 0\n1 0 0\n2 1e300 0\n3 0 1\n4 1 1\n");
+  Result r = run("big");
   EXPECT_EQ(r.code, 2);
-  EXPECT_CONTAINS(r.err, "bad.node:4: vertex 2: coordinate x");
-  write("big.node", "4 2 0 0\n0 0 0\n1 1e300 0\n2 0 1\n3 1 1\n");
-  r = run("big");
+  EXPECT_CONTAINS(r.err, "big.node:4: vertex 2: coordinate x");
+  write("big0.node", "4 2 0 0\n0 0 0\n1 1e300 0\n2 0 1\n3 1 1\n");
+  r = run("big0");
   EXPECT_EQ(r.code, 2);
-  EXPECT_CONTAINS(r.err, "big.node:3: vertex 1: coordinate x");
+  EXPECT_CONTAINS(r.err, "big0.node:3: vertex 1: coordinate x");
   // In a .poly that lists its vertices, the .poly's line.
-  write("badp.poly", "4 2 0 0\n1 0 0\n2 1 0\n3 1 1\n4 0 inf\n0 0\n0\n");
+  write("badp.poly", "4 2 0 0\n1 0 0\n2 1 0\n3 1 1\n4 0 1e-250\n0 0\n0\n");
   r = run("-p badp");
   EXPECT_EQ(r.code, 2);
   EXPECT_CONTAINS(r.err, "badp.poly:5: vertex 4: coordinate y");
 }
 
 TEST_F(Surprises, IgnoredHoleAndRegionPointsAreIdentified) {
-  write("sq.poly", std::string(kSquare) + "2\n1 0.5 0.5\n2 5 5\n2\n1 0.25 0.5 7 0\n2 9 9 8 0\n");
+  write("sq.poly", kSquare + "1\n1 5 5\n2\n1 0.25 0.5 7 0\n2 9 9 8 0\n");
   const Result r = run("-pAC sq");
   ASSERT_EQ(r.code, 0) << r.err;
-  EXPECT_CONTAINS(r.err, "hole point 2 at (5, 5) ignored");
+  EXPECT_CONTAINS(r.err, "hole point 1 at (5, 5) ignored");
   EXPECT_CONTAINS(r.err, "region point 2 at (9, 9) ignored");
 }
 
@@ -271,7 +275,7 @@ TEST_F(Surprises, StatsJsonKeysAreTheDocumentedSchema) {
 // Why 8: exponents in switch numbers are explained, with the number to type.
 
 TEST_F(Surprises, ExponentsInSwitchNumbersAreExplained) {
-  write("sq.poly", kSquare);
+  write("sq.poly", kSquareHoles);
   Result r = run("-pa1e-3 sq");
   EXPECT_EQ(r.code, 1);
   EXPECT_CONTAINS(r.err, "switch numbers have no exponent");
@@ -312,7 +316,7 @@ TEST_F(Surprises, OneIsSingular) {
   EXPECT_CONTAINS(r.out, "3 input vertices, 1 triangle, 3 hull edges");
   EXPECT_CONTAINS(r.out, "mesh is valid: 1 triangle, 3 edges, 3 vertices");
   read_back("tri.1");
-  write("sq.poly", kSquare);
+  write("sq.poly", kSquareHoles);
   r = run("-pq30a0.02C --smooth=1 sq");
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_CONTAINS(r.out, " in 1 pass ");
