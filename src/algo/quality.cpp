@@ -153,7 +153,7 @@ std::string QualityReport::text() const {
 // The schema is docs/stats-schema.md (version kStatsSchemaVersion); Python's
 // quality() returns the same object as a dict. Infinite values are null.
 std::string QualityReport::json() const {
-  using nlohmann::json;
+  using json = nlohmann::ordered_json;  // keys in the order written (the table's)
   auto num = [](double v) { return std::isfinite(v) ? json(v) : json(nullptr); };
   json o;
   o["schema"] = "deltamesh-stats";
