@@ -5,7 +5,7 @@ WERROR     ?= OFF
 CMAKE_ARGS ?=
 CLI        := $(BUILD)/bin/deltamesh
 
-.PHONY: all deps configure build demo test bench check-long clean test-sanitize fuzz install
+.PHONY: all deps configure build demo docs test bench check-long clean test-sanitize fuzz install
 
 all: build
 
@@ -27,6 +27,14 @@ demo: deps configure
 	@cp examples/plate.poly out/plate.poly
 	$(CLI) -pq30a0.05 -V -C --svg out/plate.svg out/plate.poly
 	@echo "demo: mesh written to out/plate.1.node, out/plate.1.ele, out/plate.1.poly; picture: out/plate.svg"
+
+# The command transcripts in README.md and docs/*.md rewritten with what the
+# tools print now, and the pictures in docs/img rendered again from the SVGs
+# those commands write (rsvg-convert). ctest's docs_transcripts fails when a
+# quoted line is out of date.
+docs: configure
+	@cmake --build $(BUILD) -j $(JOBS) --target deltamesh_cli deltamesh-gen
+	@python3 scripts/docs_transcripts.py --update --pictures --cli $(CLI) --gen $(BUILD)/bin/deltamesh-gen
 
 # The tools, the library (headers, static library, CMake package) and the
 # Python module; PREFIX defaults to /usr/local.

@@ -72,6 +72,19 @@ std::optional<std::string> refused_switch(char c) {
   }
 }
 
+// A long option triangulate() does not take: the command line's that are
+// about files, or a misspelling (named as such, the nearest one suggested).
+std::string unavailable_long_option(const std::string& name, const std::string& opts) {
+  const std::vector<std::string_view> cli = long_option_names();
+  if (std::find(cli.begin(), cli.end(), name) != cli.end())
+    return "option " + name + " in '" + opts + "' is not available in deltamesh.triangulate (it is about files)";
+  const std::vector<std::string_view> known(std::begin(kLongOptions), std::end(kLongOptions));
+  std::string msg = unknown_option_message(name, known);
+  const std::string_view cli_hint = " (see deltamesh --help)";
+  if (ends_with(msg, cli_hint)) msg.resize(msg.size() - cli_hint.size());
+  return "bad switches '" + opts + "': " + msg;
+}
+
 }  // namespace
 
 // Parses a Triangle switch string ("pq30a0.1", a leading '-' optional) with
@@ -92,9 +105,7 @@ CommandLine parse_switches(const std::string& opts) {
           throw py::value_error("option " + name + " in '" + opts +
                                 "': use deltamesh.adapt(mesh, size, opts, smooth=N) (smooth=0 for none)");
         if (std::find(std::begin(kLongOptions), std::end(kLongOptions), name) == std::end(kLongOptions))
-          throw py::value_error(
-              "option " + name + " in '" + opts +
-              "' is not available in deltamesh.triangulate (it names an output file or does not exist)");
+          throw py::value_error(unavailable_long_option(name, opts));
       } else {
         if (tok[0] == '-') tok.erase(0, 1);
         if (tok.empty()) {

@@ -92,31 +92,21 @@ py::dict validate_dict(const py::dict& tri, bool delaunay, bool convex_hull, boo
   return d;
 }
 
+// The command line's --stats=json object (docs/stats-schema.md) as a dict,
+// plus the names quality() used before the schema (min_angle, max_angle,
+// angle_histogram), kept as aliases.
 py::dict quality_dict(const py::dict& tri, double min_angle, double max_area) {
   Rebuilt r = rebuild(tri, false);
   QualityOptions q;
   q.min_angle_deg = min_angle;
   q.max_area = max_area;
   const QualityReport qr = quality_report(r.mesh, q);
-  py::dict d;
-  d["triangles"] = qr.triangles;
-  d["vertices"] = qr.vertices;
-  d["min_angle"] = qr.min_angle_deg;
-  d["max_angle"] = qr.max_angle_deg;
-  d["min_area"] = qr.min_area;
-  d["max_area"] = qr.max_area;
-  d["shortest_edge"] = qr.shortest_edge;
-  d["longest_edge"] = qr.longest_edge;
-  d["max_aspect_ratio"] = qr.max_aspect_ratio;
-  d["max_radius_edge"] = qr.max_radius_edge;
-  py::list hist;
-  for (const std::size_t c : qr.angle_histogram) hist.append(c);
-  d["angle_histogram"] = hist;
-  d["below_angle"] = qr.below_angle;
-  d["above_area"] = qr.above_area;
+  py::dict d = py::module_::import("json").attr("loads")(qr.json());
+  d["min_angle"] = d["min_angle_deg"];
+  d["max_angle"] = d["max_angle_deg"];
+  d["angle_histogram"] = d["angle_histogram_deg10"];
   return d;
 }
-
 
 py::dict read_file(const std::string& path) {
   namespace fs = std::filesystem;

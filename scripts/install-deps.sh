@@ -3,6 +3,7 @@
 # Usage: scripts/install-deps.sh [core|bench|test-tools]...
 set -euo pipefail
 want=(g++ make cmake libgtest-dev libgmock-dev libbenchmark-dev libgmp-dev libxml2-utils gmsh python3-meshio librsvg2-bin
+      nlohmann-json3-dev  # JSON statistics (--stats=json)
       pybind11-dev python3-dev python3-numpy)  # the last three: Python bindings (python/)
 for group in "$@"; do
   case "$group" in

@@ -150,9 +150,9 @@ TEST_F(Adversarial, LiteralBeyondDoubleRangeIsAParseError) {
 
 TEST_F(Adversarial, HugeCoordinateBeyond2To200IsAnInputError) {
   // > 2^200: the exact predicates could overflow. The message names the
-  // point and the limit.
-  expect_input_error("huge.node", "3 2 0 0\n0 0 0\n1 1e61 0\n2 0 1\n", 0, "coordinate x of point 1 is out of range");
-  expect_input_error("huge2.node", "3 2 0 0\n0 0 0\n1 0 1\n2 0 -1e300\n", 0, "exceeds the supported magnitude");
+  // vertex as the file numbers it, its line, and the limit.
+  expect_input_error("huge.node", "3 2 0 0\n0 0 0\n1 1e61 0\n2 0 1\n", 3, "vertex 1: coordinate x is out of range");
+  expect_input_error("huge2.node", "3 2 0 0\n0 0 0\n1 0 1\n2 0 -1e300\n", 4, "exceeds the supported magnitude");
 }
 
 TEST_F(Adversarial, CoordinatesAtTheLimitsOfTheRangeMesh) {
@@ -166,9 +166,9 @@ TEST_F(Adversarial, CoordinatesAtTheLimitsOfTheRangeMesh) {
 }
 
 TEST_F(Adversarial, SubnormalCoordinateIsAnInputError) {
-  expect_input_error("denormal.node", "3 2 0 0\n0 0 0\n1 1 4.9406564584124654e-324\n2 0 1\n", 0,
-                     "coordinate y of point 1 is out of range");
-  expect_input_error("denormal2.node", "3 2 0 0\n0 0 0\n1 1e-310 0\n2 0 1\n", 0, "below the supported magnitude");
+  expect_input_error("denormal.node", "3 2 0 0\n0 0 0\n1 1 4.9406564584124654e-324\n2 0 1\n", 3,
+                     "vertex 1: coordinate y is out of range");
+  expect_input_error("denormal2.node", "3 2 0 0\n0 0 0\n1 1e-310 0\n2 0 1\n", 3, "below the supported magnitude");
   // Negative zero is zero.
   write("negzero.node", "3 2 0 0\n0 -0 -0.0\n1 1 0\n2 0 1\n");
   EXPECT_EQ(run("-QC negzero.node").code, kExitOk);
@@ -492,7 +492,8 @@ TEST_F(Adversarial, HoleOutsideTheDomainIsIgnoredWithAWarning) {
   write("hole.poly", kSquare + "2\n0 9 9\n1 -1e300 0\n");
   const CliResult r = run("-p hole.poly");
   EXPECT_EQ(r.code, kExitOk) << r.err;
-  EXPECT_CONTAINS(r.err, "deltamesh: warning: 2 hole points ignored (outside the convex hull, on a vertex or on a segment)");
+  EXPECT_CONTAINS(r.err, "deltamesh: warning: hole points 0 at (9, 9), 1 at (-1.0000000000000001e+300, 0) ignored "
+                         "(outside the convex hull, on a vertex or on a segment)");
   EXPECT_EQ(triangles_in(dir_ / "hole.1.ele"), 2);
 }
 
@@ -500,7 +501,7 @@ TEST_F(Adversarial, HoleOnAVertexOrASegmentIsIgnored) {
   write("hole.poly", kSquare + "2\n0 0 0\n1 2 0\n");
   const CliResult r = run("-p hole.poly");
   EXPECT_EQ(r.code, kExitOk) << r.err;
-  EXPECT_CONTAINS(r.err, "2 hole points ignored");
+  EXPECT_CONTAINS(r.err, "hole points 0 at (0, 0), 1 at (2, 0) ignored");
   EXPECT_EQ(triangles_in(dir_ / "hole.1.ele"), 2);
 }
 
@@ -512,7 +513,7 @@ TEST_F(Adversarial, RegionPointInAHoleIsIgnoredWithAWarning) {
   write("region.poly", text);
   const CliResult r = run("-pA region.poly");
   EXPECT_EQ(r.code, kExitOk) << r.err;
-  EXPECT_CONTAINS(r.err, "deltamesh: warning: 1 region point ignored (outside the domain, on a vertex or on a segment)");
+  EXPECT_CONTAINS(r.err, "deltamesh: warning: region point 0 at (2.5, 2.5) ignored (outside the domain, on a vertex or on a segment)");
   EXPECT_EQ(triangles_in(dir_ / "region.1.ele"), 8);
 }
 

@@ -3,6 +3,7 @@
 #pragma once
 #include <chrono>
 #include <cstddef>
+#include <cstdio>
 #include <string>
 #include <vector>
 
@@ -63,6 +64,9 @@ RunInput read_input(Session& s);
 
 // The 1-based line of segment `index` in a .poly file (0 when not found).
 std::size_t poly_segment_line(const std::string& path, std::size_t index);
+// Where vertex `index` (0-based in the input) is written: "FILE.node:LINE"
+// (or the .poly that lists it), for messages about one vertex.
+std::string vertex_place(const Session& s, std::size_t index);
 // The 1-based line of triangle `index` (0-based) in a .ele file (0 when not found).
 std::size_t ele_triangle_line(const std::string& path, std::size_t index);
 
@@ -71,12 +75,17 @@ std::size_t ele_triangle_line(const std::string& path, std::size_t index);
 std::vector<std::string> write_outputs(Session& s, const RunResult& r);
 
 // -C's summary when it passed ("..., N segments present" with -p).
-std::string check_summary(const RunResult& r);
+std::string check_summary(const Session& s, const RunResult& r);
 
 // The quality report for --stats=json and -V.
 QualityReport quality(const Session& s, const RunResult& r);
 
-// What -Q silences: the summary lines, -V's statistics and timings.
-void report(const Session& s, const RunResult& r, const std::vector<std::string>& written);
+// What -Q silences: the summary lines, -V's statistics and timings, on
+// `out` (stderr when stdout carries --stats=json).
+void report(const Session& s, const RunResult& r, const std::vector<std::string>& written, std::FILE* out);
+
+// --stats=json: the quality report alone on stdout, or in --stats=json:FILE
+// (an IoError when it cannot be written).
+void write_stats(const Session& s, const RunResult& r);
 
 }  // namespace deltamesh::cli

@@ -38,6 +38,9 @@ dm::RunResult run_pipeline(Session& s, dm::RunInput input) {
 int execute(Session& s) {
   const auto t_total = Clock::now();
   dm::RunInput input = read_input(s);
+  if (!s.plan.quiet)
+    for (const std::string& w : dm::unused_options(s.cl, s.geojson, s.geojson ? &s.geojson_info : nullptr))
+      std::fprintf(stderr, "deltamesh: warning: %s\n", w.c_str());
   std::unique_ptr<dm::TraceFile> trace;  // --trace: opened before the run, committed with the outputs
   if (s.cl.trace_path) {
     s.writing = true;  // a trace file that cannot be created is an output error
@@ -68,8 +71,15 @@ int execute(Session& s) {
   add_phase(s, "write", t);
   add_phase(s, "total", t_total);
 
-  if (!s.plan.quiet) report(s, r, written);
-  if (s.cl.stats_json) std::printf("%s\n", quality(s, r).json().c_str());
+  std::vector<std::string> reported = written;
+  if (s.cl.stats_json && !s.cl.stats_path.empty()) {
+    write_stats(s, r);
+    reported.push_back(s.cl.stats_path);
+  }
+  // stdout carries the JSON alone when it goes there.
+  const bool json_on_stdout = s.cl.stats_json && s.cl.stats_path.empty();
+  if (!s.plan.quiet) report(s, r, reported, json_on_stdout ? stderr : stdout);
+  if (json_on_stdout) write_stats(s, r);
   return status;
 }
 
@@ -131,6 +141,15 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "deltamesh: %s:%zu: triangles %zu and %zu (line %zu) %s; the mesh is refused\n", ele.c_str(),
                  ele_triangle_line(ele, e.first()), e.first() + base, e.second() + base,
                  ele_triangle_line(ele, e.second()), e.how().c_str());
+    return dm::kExitInput;
+  } catch (const dm::VertexError& e) {
+    // As numbered in the user's file, with its line (GeoJSON has no numbers).
+    if (s.geojson) {
+      std::fprintf(stderr, "deltamesh: %s: %s\n", cl.input.c_str(), e.what());
+    } else {
+      std::fprintf(stderr, "deltamesh: %s: vertex %zu: %s\n", vertex_place(s, e.index()).c_str(),
+                   e.index() + static_cast<std::size_t>(s.first_index), e.problem().c_str());
+    }
     return dm::kExitInput;
   } catch (const dm::InputError& e) {
     std::fprintf(stderr, "deltamesh: %s: %s\n", s.input_path.empty() ? cl.input.c_str() : s.input_path.c_str(),

@@ -185,6 +185,23 @@ std::size_t poly_segment_line(const std::string& path, std::size_t index) {
   return data_line(path, [&](long long vertices) { return static_cast<std::size_t>(vertices) + 3 + index; });
 }
 
+std::string vertex_place(const Session& s, std::size_t index) {
+  const std::string in = s.name.with_iteration();
+  const std::size_t none = static_cast<std::size_t>(-1);
+  // header, vertices; a .poly that lists none takes them from FILE.node.
+  const auto line_in = [&](const std::string& path) {
+    return data_line(path, [&](long long vertices) { return vertices > 0 ? index + 2 : none; });
+  };
+  std::string path = in + ".node";
+  std::size_t line = 0;
+  if (s.plan.input == InputKind::Pslg) {
+    line = line_in(in + ".poly");
+    if (line) path = in + ".poly";
+  }
+  if (!line) line = line_in(path);
+  return path + (line ? ":" + std::to_string(line) : "");
+}
+
 std::size_t ele_triangle_line(const std::string& path, std::size_t index) {
   return data_line(path, [&](long long) { return index + 2; });  // header, triangles
 }

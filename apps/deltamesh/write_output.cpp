@@ -69,6 +69,7 @@ std::vector<std::string> write_outputs(Session& s, const RunResult& r) {
     for (const auto& p : planned) paths.push_back(p.first);
     if (cl.svg_path) paths.push_back(*cl.svg_path);
     if (cl.trace_path) paths.push_back(*cl.trace_path);
+    if (!cl.stats_path.empty()) paths.push_back(cl.stats_path);
     refuse_to_replace_inputs(s, paths);
   }
   std::vector<std::string> written;

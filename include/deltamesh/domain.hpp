@@ -41,6 +41,8 @@ struct DomainStats {
   std::size_t regions_used = 0;      // region seeds that located in a kept triangle
   std::size_t regions_ignored = 0;   // region seeds outside the domain, on a vertex or on a segment
   std::size_t hull_segments_added = 0;  // -c: hull edges that were not segments yet
+  std::vector<std::size_t> ignored_holes;    // the ignored hole points, 0-based in pslg.holes
+  std::vector<std::size_t> ignored_regions;  // the ignored region seeds, 0-based in pslg.regions
   double seconds = 0.0;
 };
 
@@ -77,8 +79,10 @@ void carve_mesh(Mesh& mesh, const Pslg& pslg, const DomainOptions& options = {},
 // were ignored, and an empty result. `existing_mesh` words them for
 // carve_mesh (a mesh read back, where hole points outside it are expected);
 // otherwise for carve_domain. One place, so the CLI and triangulate() agree.
+// With the carve's `pslg`, ignored points are named by number (as its file
+// numbers them: first_index) and place: "hole point 2 at (0.5, 0.5) ignored".
 std::vector<std::string> domain_warnings(const DomainStats& stats, std::size_t triangles_left,
-                                         bool existing_mesh = false);
+                                         bool existing_mesh = false, const Pslg* pslg = nullptr);
 
 // The invariant carving leaves: every boundary edge of the (compacted) mesh
 // is a segment, since removal stops only at segments and -c makes the hull

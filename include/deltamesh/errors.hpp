@@ -41,6 +41,20 @@ class InputError : public Error {
   std::size_t index_;
 };
 
+// Input that cannot be meshed because of one vertex (a coordinate out of
+// range, a size that is not positive): `index` is its 0-based position in
+// the input's vertex list, `problem` what is wrong without naming it, so a
+// front end can name the vertex as the user's file numbers it.
+class VertexError : public InputError {
+ public:
+  VertexError(const std::string& what, std::size_t index, std::string problem)
+      : InputError(what, index), problem_(std::move(problem)) {}
+  const std::string& problem() const { return problem_; }
+
+ private:
+  std::string problem_;
+};
+
 // An output file could not be written.
 class IoError : public Error {
  public:

@@ -145,6 +145,8 @@ struct GeoJsonInfo {
   std::size_t duplicate_segments = 0;  // the same edge on two rings (shared borders), kept once
   std::size_t seeds = 0;               // region seeds produced
   std::size_t seeds_failed = 0;        // polygons where no interior point was found
+  std::size_t polygons_with_attribute = 0;  // polygons whose feature has attribute_property (not null)
+  std::size_t polygons_with_area = 0;       // ... area_property
   std::vector<std::string> categories; // string attribute values; value i has attribute i+1
 };
 

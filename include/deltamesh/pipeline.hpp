@@ -160,6 +160,12 @@ struct RunResult {
   const std::vector<std::string>& warnings() const { return stats.warnings; }
 };
 
+// Settings of `plan` that have no effect on the run it describes (-Y or
+// --steiner without refinement, -A or --cdt without segments, ...), one
+// message each; run() puts them first among its warnings, so the command
+// line and Python say them once.
+std::vector<std::string> unused_settings(const Plan& plan);
+
 // Runs `plan` on `input`. Throws what the steps throw: InputError (and its
 // IntersectingSegments, SegmentError) for input that cannot be meshed,
 // InternalError for a bug. A refinement that stops short of its bounds and

@@ -23,6 +23,11 @@ struct QualityOptions {
   std::size_t input_vertices = static_cast<std::size_t>(-1);
 };
 
+// The version of the JSON object QualityReport::json() writes (--stats=json,
+// Python's quality()); docs/stats-schema.md. Raised when a key changes
+// meaning or goes; new keys may appear within a version.
+inline constexpr int kStatsSchemaVersion = 1;
+
 struct QualityReport {
   std::size_t triangles = 0;
   std::size_t vertices = 0;          // vertices used by a triangle
@@ -52,7 +57,7 @@ struct QualityReport {
   std::optional<RefineStats> refine; // why triangles are below the bound, when refinement ran
 
   std::string text() const;
-  std::string json() const;
+  std::string json() const;  // one line, docs/stats-schema.md
 };
 
 QualityReport quality_report(const Mesh& mesh, const QualityOptions& options = {},

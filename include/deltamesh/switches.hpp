@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "deltamesh/errors.hpp"
+#include "deltamesh/formats.hpp"
 #include "deltamesh/pipeline.hpp"
 
 namespace deltamesh {
@@ -47,10 +48,14 @@ struct CommandLine {
   std::vector<std::string> outputs;     // --output PATH (format from the extension); when given, only these
                                         // (and -e -n -v -g files) are written, not FILE.1.node/.ele/.poly
   bool msh_v22 = false;                 // --msh-version=2.2 (default 4.1)
+  bool msh_version_given = false;       // --msh-version (either value)
   bool vtu_binary = false;              // --vtu-binary
   bool geojson_segments = false;        // --geojson-segments
   bool voronoi_overlay = false;         // --voronoi-overlay (bounded Voronoi cells in .svg/.geojson)
-  bool stats_json = false;              // --stats=json
+  // --stats, --stats=json: the quality report as JSON alone on stdout (the
+  // summary lines go to stderr); --stats=json:FILE: to FILE instead.
+  bool stats_json = false;
+  std::string stats_path;
   // GeoJSON input.
   std::string region_property;  // --region-property NAME
   std::string area_property;    // --area-property NAME
@@ -79,9 +84,23 @@ CommandLine parse_arguments(const std::vector<std::string>& args);
 // `name` with its dashes) says, with the command line's checks and messages.
 void apply_long_option(CommandLine& cl, std::string_view name, std::string_view value);
 
+// "unknown option --cdtt (did you mean --cdt?)": the message for a long
+// option that is not among `known` (the nearest within a third of its
+// length suggested). The command line passes every option it knows.
+std::string unknown_option_message(std::string_view name, const std::vector<std::string_view>& known);
+// The command line's long options, with and without a value.
+std::vector<std::string_view> long_option_names();
+
 // (parse_cdt_method, parse_steiner_rule, parse_encroachment_rule: cdt.hpp, refine.hpp)
 std::optional<FillRule> parse_fill_rule(std::string_view name);    // "holes", "evenodd" ("even-odd")
 std::optional<RefineOrder> parse_refine_order(std::string_view name);  // "shortest", "worst"
+
+// Options and switches that change nothing in this run, one message each
+// ("--vtu-binary has no effect: no .vtu output (--output FILE.vtu)"); the
+// command line prints them once as warnings. `geojson_input`: FILE is
+// GeoJSON; `geojson` its reader's counts (the property checks), or null
+// before reading. Settings of the Plan alone are run()'s (unused_settings).
+std::vector<std::string> unused_options(const CommandLine& cl, bool geojson_input, const GeoJsonInfo* geojson);
 
 // The command line's --help.
 std::string help_text();

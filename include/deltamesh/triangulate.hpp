@@ -62,6 +62,7 @@ struct TriangulateStats {
   DomainStats domain;                  // carving (with -p)
   std::size_t vertices = 0;            // in the result (input + added)
   std::size_t triangles = 0;
+  std::size_t triangulated = 0;        // triangles before refinement (after carving)
   std::size_t segments = 0;            // constrained edges in the result
   CheckReport segment_check;           // with options.check_segments
   double check_seconds = 0.0;          // ... its time

@@ -62,6 +62,7 @@ struct CheckReport {
   std::size_t edges = 0;
   std::size_t vertices_used = 0;
   std::size_t segments_checked = 0;  // PSLG segments found as constrained chains or missing (with options.pslg)
+  bool delaunay_checked = true;      // options.delaunay (the summary says when it was not)
   bool ok() const { return problems.empty(); }
   std::string summary() const;
 };

@@ -237,8 +237,8 @@ class Quality(unittest.TestCase):
             mesh = deltamesh.triangulate(outside, "rpA")
         deltamesh.validate(mesh)
         self.assertEqual(mesh["stats"]["regions_ignored"], 1)
-        self.assertIn("1 region point ignored", mesh["stats"]["warnings"][0])
-        self.assertTrue(any("region point ignored" in str(w.message) for w in caught))
+        self.assertIn("region point 1 at (3, 3) ignored", mesh["stats"]["warnings"][0])  # 0-based, as given
+        self.assertTrue(any("region point 1 at (3, 3) ignored" in str(w.message) for w in caught))
         # a hole point in a closed region with no segment left around it eats the mesh
         emptied = dict(coarse, segments=np.zeros((0, 2), int), holes=[[.25, .5]])
         emptied.pop("segment_markers")
@@ -511,7 +511,8 @@ class DictAndKeywords(unittest.TestCase):
         # O ignores the hole; without p there are no regions or holes
         sq = square_with_hole()
         self.assertAlmostEqual(areas(quiet_triangulate(sq, "pO")).sum(), 1.0, places=12)
-        self.assertNotIn("triangle_attributes", quiet_triangulate(r, "A"))
+        with self.assertWarnsRegex(UserWarning, "-A has no effect"):  # said, not silent
+            self.assertNotIn("triangle_attributes", deltamesh.triangulate(r, "A"))
 
     def test_threads_give_the_same_mesh(self):
         sq = square_with_hole()

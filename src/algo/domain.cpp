@@ -15,8 +15,10 @@
 // The common case (Holes, no region seeds) skips the labels: one flood from
 // the exterior and the hole points visits only the triangles removed.
 #include "deltamesh/domain.hpp"
+#include "core/plural.hpp"
 
 #include <algorithm>
+#include <cstdio>
 #include <chrono>
 #include <string>
 #include <vector>
@@ -206,10 +208,11 @@ void carve_domain(Mesh& mesh, const Pslg& pslg, const DomainOptions& options, Do
   TriId hint = kNone;
   std::vector<TriId> hole_tris;
   if (!options.ignore_holes) {
-    for (const Point& h : pslg.holes) {
-      const TriId t = seed_triangle(mesh, h, hint);
+    for (std::size_t i = 0; i < pslg.holes.size(); ++i) {
+      const TriId t = seed_triangle(mesh, pslg.holes[i], hint);
       if (t == kNone) {
         ++st.holes_ignored;
+        st.ignored_holes.push_back(i);
         continue;
       }
       ++st.holes_used;
@@ -272,6 +275,7 @@ void carve_domain(Mesh& mesh, const Pslg& pslg, const DomainOptions& options, Do
       const TriId t = seed_tris[i];
       if (t == kNone || region_removed[regions.label[t]]) {
         ++st.regions_ignored;
+        st.ignored_regions.push_back(i);
         continue;
       }
       ++st.regions_used;
@@ -375,6 +379,7 @@ void carve_mesh(Mesh& mesh, const Pslg& pslg, const DomainOptions& options, Doma
       ++st.holes_outside;
     } else if (where[i] == kInfinite) {
       ++st.holes_ignored;
+      st.ignored_holes.push_back(i);
     } else {
       ++st.holes_used;
       region_removed[regions.label[where[i]]] = 1;
@@ -385,6 +390,7 @@ void carve_mesh(Mesh& mesh, const Pslg& pslg, const DomainOptions& options, Doma
     const TriId t = where[i];
     if (t == kNone || t == kInfinite || region_removed[regions.label[t]]) {
       ++st.regions_ignored;
+      st.ignored_regions.push_back(i - num_holes);
       continue;
     }
     ++st.regions_used;
@@ -431,18 +437,45 @@ std::vector<std::string> check_domain_boundary(const Mesh& mesh, std::size_t max
   return problems;
 }
 
-std::vector<std::string> domain_warnings(const DomainStats& stats, std::size_t triangles_left, bool existing_mesh) {
-  auto count_of = [](std::size_t n, const char* one, const char* many) {
-    return std::to_string(n) + " " + (n == 1 ? one : many);
-  };
+namespace {
+
+// "hole point 2 at (0.5, 0.25)" (and "hole points 2 at (..), 4 at (..)"),
+// numbered as the PSLG's file numbers them; at most 5 named.
+std::string named_points(const char* one, const char* many, const std::vector<std::size_t>& ids,
+                         const std::vector<Point>& at, std::size_t first_index) {
+  std::string out = ids.size() == 1 ? one : many;
+  for (std::size_t k = 0; k < ids.size() && k < 5; ++k) {
+    char buf[96];
+    const Point p = ids[k] < at.size() ? at[ids[k]] : Point{};
+    std::snprintf(buf, sizeof buf, "%s %zu at (%.17g, %.17g)", k ? "," : "", ids[k] + first_index, p.x, p.y);
+    out += buf;
+  }
+  if (ids.size() > 5) out += " and " + std::to_string(ids.size() - 5) + " more";
+  return out;
+}
+
+}  // namespace
+
+std::vector<std::string> domain_warnings(const DomainStats& stats, std::size_t triangles_left, bool existing_mesh,
+                                         const Pslg* pslg) {
   std::vector<std::string> out;
+  const bool name = pslg && stats.ignored_holes.size() == stats.holes_ignored;
   if (stats.holes_ignored)
-    out.push_back(count_of(stats.holes_ignored, "hole point", "hole points") +
+    out.push_back((name ? named_points("hole point", "hole points", stats.ignored_holes, pslg->holes,
+                                       static_cast<std::size_t>(pslg->first_index))
+                        : count_of(stats.holes_ignored, "hole point", "hole points")) +
                   (existing_mesh ? " ignored (on a vertex or on a segment)"
                                  : " ignored (outside the convex hull, on a vertex or on a segment)"));
-  if (stats.regions_ignored)
-    out.push_back(count_of(stats.regions_ignored, "region point", "region points") +
+  if (stats.regions_ignored) {
+    std::vector<Point> seeds;
+    if (pslg)
+      for (const RegionSeed& r : pslg->regions) seeds.push_back(r.p);
+    const bool name_regions = pslg && stats.ignored_regions.size() == stats.regions_ignored;
+    out.push_back((name_regions ? named_points("region point", "region points", stats.ignored_regions, seeds,
+                                               static_cast<std::size_t>(pslg->first_index))
+                                : count_of(stats.regions_ignored, "region point", "region points")) +
                   " ignored (outside the domain, on a vertex or on a segment)");
+  }
   if (triangles_left == 0)
     out.push_back(existing_mesh ? "every triangle was removed: a hole point reaches everything"
                                 : "every triangle was removed: the domain is empty (a hole point or the exterior "

@@ -8,6 +8,8 @@
 #include <sstream>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "core/angles.hpp"
 
 namespace deltamesh {
@@ -148,42 +150,62 @@ std::string QualityReport::text() const {
   return o.str();
 }
 
+// The schema is docs/stats-schema.md (version kStatsSchemaVersion); Python's
+// quality() returns the same object as a dict. Infinite values are null.
 std::string QualityReport::json() const {
-  std::ostringstream o;
-  auto num = [](double v) { return std::isfinite(v) ? fmt(v) : std::string("null"); };
-  o << "{\"triangles\":" << triangles << ",\"vertices\":" << vertices << ",\"input_vertices\":" << input_vertices
-    << ",\"steiner_vertices\":" << steiner_vertices << ",\"segments\":" << segments
-    << ",\"min_angle_deg\":" << num(min_angle_deg) << ",\"max_angle_deg\":" << num(max_angle_deg)
-    << ",\"min_aspect_ratio\":" << num(min_aspect_ratio) << ",\"max_aspect_ratio\":" << num(max_aspect_ratio)
-    << ",\"min_radius_edge\":" << num(min_radius_edge) << ",\"max_radius_edge\":" << num(max_radius_edge)
-    << ",\"min_area\":" << num(min_area) << ",\"max_area\":" << num(max_area)
-    << ",\"shortest_edge\":" << num(shortest_edge) << ",\"longest_edge\":" << num(longest_edge)
-    << ",\"angle_histogram_deg10\":[";
-  for (std::size_t i = 0; i < angle_histogram.size(); ++i) o << (i ? "," : "") << angle_histogram[i];
-  o << "],\"aspect_histogram\":{\"limits\":[";
-  for (std::size_t i = 0; i < kAspectLimits.size(); ++i) o << (i ? "," : "") << fmt(kAspectLimits[i]);
-  o << "],\"counts\":[";
-  for (std::size_t i = 0; i < aspect_histogram.size(); ++i) o << (i ? "," : "") << aspect_histogram[i];
-  o << "]},\"angle_bound_deg\":" << num(angle_bound_deg) << ",\"below_angle\":" << below_angle
-    << ",\"above_area\":" << above_area;
+  using json = nlohmann::ordered_json;  // keys in the order written (the table's)
+  auto num = [](double v) { return std::isfinite(v) ? json(v) : json(nullptr); };
+  json o;
+  o["schema"] = "deltamesh-stats";
+  o["schema_version"] = kStatsSchemaVersion;
+  o["triangles"] = triangles;
+  o["vertices"] = vertices;
+  o["input_vertices"] = input_vertices;
+  o["steiner_vertices"] = steiner_vertices;
+  o["segments"] = segments;
+  o["min_angle_deg"] = num(min_angle_deg);
+  o["max_angle_deg"] = num(max_angle_deg);
+  o["min_aspect_ratio"] = num(min_aspect_ratio);
+  o["max_aspect_ratio"] = num(max_aspect_ratio);
+  o["min_radius_edge"] = num(min_radius_edge);
+  o["max_radius_edge"] = num(max_radius_edge);
+  o["min_area"] = num(min_area);
+  o["max_area"] = num(max_area);
+  o["shortest_edge"] = num(shortest_edge);
+  o["longest_edge"] = num(longest_edge);
+  o["angle_histogram_deg10"] = angle_histogram;
+  o["aspect_histogram"] = {{"limits", kAspectLimits}, {"counts", aspect_histogram}};
+  o["angle_bound_deg"] = num(angle_bound_deg);
+  o["below_angle"] = below_angle;
+  o["above_area"] = above_area;
   if (refine) {
     const RefineStats& s = *refine;
-    o << ",\"refine\":{\"complete\":" << (s.complete ? "true" : "false")
-      << ",\"budget_exhausted\":" << (s.budget_exhausted ? "true" : "false")
-      << ",\"time_exhausted\":" << (s.time_exhausted ? "true" : "false") << ",\"input_vertices\":" << s.input_vertices
-      << ",\"steiner_points\":" << s.steiner_points << ",\"segment_splits\":" << s.segment_splits
-      << ",\"interior_points\":" << s.interior_points << ",\"offcenters\":" << s.offcenters
-      << ",\"rejected_points\":" << s.rejected_points << ",\"small_angle_skips\":" << s.small_angle_skips
-      << ",\"below_bound\":" << s.below_bound << ",\"below_reasons\":{\"small_input_angle\":"
-      << s.below_small_input_angle << ",\"segment_protected\":" << s.below_segment_protected
-      << ",\"budget\":" << s.below_budget << ",\"out_of_reach\":" << s.below_out_of_reach
-      << ",\"precision\":" << s.below_precision << "}"
-      << ",\"reached_angle\":" << num(s.reached_angle_deg) << ",\"stalled\":" << (s.stalled ? "true" : "false")
-      << ",\"too_large\":" << s.too_large << ",\"too_large_precision\":" << s.too_large_precision
-      << ",\"seconds\":" << num(s.seconds) << "}";
+    o["refine"] = {
+        {"complete", s.complete},
+        {"budget_exhausted", s.budget_exhausted},
+        {"time_exhausted", s.time_exhausted},
+        {"input_vertices", s.input_vertices},
+        {"steiner_points", s.steiner_points},
+        {"segment_splits", s.segment_splits},
+        {"interior_points", s.interior_points},
+        {"offcenters", s.offcenters},
+        {"rejected_points", s.rejected_points},
+        {"small_angle_skips", s.small_angle_skips},
+        {"below_bound", s.below_bound},
+        {"below_reasons",
+         {{"small_input_angle", s.below_small_input_angle},
+          {"segment_protected", s.below_segment_protected},
+          {"budget", s.below_budget},
+          {"out_of_reach", s.below_out_of_reach},
+          {"precision", s.below_precision}}},
+        {"reached_angle", num(s.reached_angle_deg)},
+        {"stalled", s.stalled},
+        {"too_large", s.too_large},
+        {"too_large_precision", s.too_large_precision},
+        {"seconds", num(s.seconds)},
+    };
   }
-  o << "}";
-  return o.str();
+  return o.dump();
 }
 
 }  // namespace deltamesh

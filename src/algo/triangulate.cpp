@@ -1,5 +1,6 @@
 // The one-call pipeline (see triangulate.hpp) and the -r mesh rebuild.
 #include "deltamesh/triangulate.hpp"
+#include "core/plural.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -21,10 +22,6 @@ namespace {
 using Clock = std::chrono::steady_clock;
 
 double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
-
-std::string count_of(std::size_t n, const char* one, const char* many) {
-  return std::to_string(n) + " " + (n == 1 ? one : many);
-}
 
 // Walks from Steiner vertex `from` along half-edge e (constrained, from ->
 // w) straight on through further added vertices until an input vertex
@@ -231,9 +228,10 @@ Mesh triangulate(const Pslg& pslg, const TriangulateOptions& options, Triangulat
     if (st.cdt.zero_length_segments)
       st.warnings.push_back(count_of(st.cdt.zero_length_segments, "zero-length segment", "zero-length segments") +
                             " ignored (both ends at the same point)");
-    for (std::string& w : domain_warnings(st.domain, mesh.num_triangles())) st.warnings.push_back(std::move(w));
+    for (std::string& w : domain_warnings(st.domain, mesh.num_triangles(), false, &pslg)) st.warnings.push_back(std::move(w));
   }
 
+  st.triangulated = mesh.num_triangles();
   // Refinement works on the carved mesh; vertices it adds get their markers
   // from finish_vertex_markers below.
   if (options.refine && mesh.num_triangles() > 0) {

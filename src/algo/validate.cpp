@@ -1,4 +1,5 @@
 #include "deltamesh/validate.hpp"
+#include "core/plural.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -16,9 +17,10 @@ namespace deltamesh {
 std::string CheckReport::summary() const {
   std::ostringstream out;
   if (ok()) {
-    out << "mesh is valid: " << triangles << " triangles, " << edges << " edges, " << vertices_used
-        << " vertices";
-    if (segments_checked > 0) out << ", " << segments_checked << " segments present";
+    out << "mesh is valid: " << count_of(triangles, "triangle", "triangles") << ", " << count_of(edges, "edge", "edges")
+        << ", " << count_of(vertices_used, "vertex", "vertices");
+    if (segments_checked > 0) out << ", " << count_of(segments_checked, "segment", "segments") << " present";
+    if (!delaunay_checked) out << "; the Delaunay property was not checked";
   } else {
     out << problems.size() << " problem(s):";
     for (const std::string& p : problems) out << "\n  " << p;
@@ -452,6 +454,7 @@ class Checker {
 
 CheckReport check(const Mesh& mesh, const CheckOptions& options) {
   CheckReport report;
+  report.delaunay_checked = options.delaunay;
   Checker(mesh, options, report).run();
   return report;
 }

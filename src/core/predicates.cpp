@@ -383,7 +383,7 @@ void check_coordinates(std::span<const Point> points) {
         range_problem(bad_x ? p.x : p.y, name, kMaxCoordinate, "2^200", kMinCoordinate, "2^-200");
     std::string what("coordinate ");
     what.append(name).append(" of point ").append(std::to_string(i)).append(" ").append(problem);
-    throw InputError(what, i);
+    throw VertexError(what, i, std::string("coordinate ") + name + " " + problem);
   }
 }
 

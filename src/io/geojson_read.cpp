@@ -307,8 +307,11 @@ class Reader {
       marker_override = static_cast<int>(j_.number(m));
       has_marker = true;
     }
-    const bool want_seed = property(feature, opt_.attribute_property) != Json::kNoNode ||
-                           property(feature, opt_.area_property) != Json::kNoNode;
+    const bool has_attribute = property(feature, opt_.attribute_property) != Json::kNoNode;
+    const bool has_area = property(feature, opt_.area_property) != Json::kNoNode;
+    info_.polygons_with_attribute += has_attribute;
+    info_.polygons_with_area += has_area;
+    const bool want_seed = has_attribute || has_area;
     std::vector<Ring> rings;
     for (std::size_t r = 0; r < j_.size(coords); ++r) {
       const Id ring = j_.item(coords, r);

@@ -96,7 +96,9 @@ Long options:
                    angle first); circumcenter + circle + worst is exactly
                    Ruppert's algorithm
   --time-limit=S   stop refining after S seconds (exit code 3)
-  --stats=json     print the mesh quality report as one JSON object
+  --stats[=json[:FILE]]  the mesh quality report as one JSON object, alone
+                   on stdout (the summary goes to stderr), or in FILE
+                   (schema: docs/stats-schema.md)
   --svg PATH       also write an SVG picture of the mesh
   --trace PATH     write every step (insertions, flips and why, Steiner
                    points and their rule, ...) as JSON Lines (docs/trace.md);

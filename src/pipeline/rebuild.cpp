@@ -5,6 +5,37 @@
 
 namespace deltamesh::pipeline {
 
+namespace {
+
+// Without -p nothing keeps the line between two triangle attributes: flips
+// and new points move it, and new triangles there may take the attribute
+// of the other side. Said once, when the mesh changes (we warn rather than
+// constrain those edges: Triangle's -r does the same, and -p is the way).
+void warn_attribute_boundaries(const Plan& plan, const Mesh& mesh, RunResult& res) {
+  const bool changes = plan.refine.requested() || plan.input == InputKind::Adapt || plan.smooth > 0;
+  const std::size_t na = mesh.num_triangle_attributes();
+  if (!changes || na == 0) return;
+  const std::vector<double>& attr = mesh.triangle_attributes();
+  std::size_t edges = 0;
+  for (HalfEdgeId e = 0; e < mesh.triangle_vertices().size(); ++e) {
+    const HalfEdgeId f = mesh.twin(e);
+    if (f == kNone || f < e || mesh.is_constrained(e)) continue;
+    const std::size_t t = e / 3, u = f / 3;
+    for (std::size_t k = 0; k < na; ++k)
+      if (attr[t * na + k] != attr[u * na + k]) {
+        ++edges;
+        break;
+      }
+  }
+  if (edges)
+    res.stats.warnings.push_back(
+        "the triangle attributes differ across " + std::to_string(edges) + (edges == 1 ? " edge" : " edges") +
+        " that are not segments: without -p the refinement does not keep that line, and triangles near it may "
+        "take the other side's attribute (give -p with FILE.poly's segments to keep it)");
+}
+
+}  // namespace
+
 void rebuild_mesh(const Plan& plan, RunInput& in, RunResult& res, Phases& phases) {
   drop_midside_nodes(in);  // a 6-node mesh is rebuilt as its corner mesh
   auto t = Clock::now();
@@ -22,6 +53,7 @@ void rebuild_mesh(const Plan& plan, RunInput& in, RunResult& res, Phases& phases
   res.stats.input_segments = nodes.segments.size();
   phases.add("rebuild mesh", t);
   Mesh& mesh = res.mesh;
+  if (!plan.mesh_segments) warn_attribute_boundaries(plan, mesh, res);
   if (plan.mesh_segments) {
     if (res.inserted.inserted) phases.out.push_back({"  of which segment insertion", res.inserted.seconds});
     if (plan.check) {
@@ -43,12 +75,13 @@ void rebuild_mesh(const Plan& plan, RunInput& in, RunResult& res, Phases& phases
     dopt.ignore_holes = plan.domain.ignore_holes;
     dopt.regional_attributes = plan.domain.regional_attributes;
     Pslg seeds;
+    seeds.first_index = nodes.first_index;  // warnings number points as the file does
     seeds.holes = nodes.holes;
     seeds.regions = nodes.regions;
     carve_mesh(mesh, seeds, dopt, &res.stats.domain);
     if (res.stats.domain.triangles_removed) finish_vertex_markers(mesh);
     phases.add("holes, regions", t);
-    for (std::string& w : domain_warnings(res.stats.domain, mesh.num_triangles(), true))
+    for (std::string& w : domain_warnings(res.stats.domain, mesh.num_triangles(), true, &seeds))
       res.stats.warnings.push_back(std::move(w));
   }
   if (plan.domain.convex_hull) {

@@ -231,6 +231,7 @@ RunResult run(const Plan& plan, RunInput input) {
   const auto t0 = Clock::now();
   RunResult res;
   Phases phases{res.phases};
+  const std::vector<std::string> unused = unused_settings(plan);
   if (plan.mesh_input()) {
     process_mesh(plan, input, res, phases);
     if (plan.input != InputKind::Adapt) smooth_mesh(plan, 0, res, phases);
@@ -238,6 +239,8 @@ RunResult run(const Plan& plan, RunInput input) {
     triangulate_input(plan, input, res, phases);
     smooth_mesh(plan, input.pslg.points.size(), res, phases);  // the input's vertices stay
   }
+  // The steps reset the stats: the no-effect notes go first now.
+  res.stats.warnings.insert(res.stats.warnings.begin(), unused.begin(), unused.end());
   if (plan.jettison) res.mesh.remove_unused_vertices();
   if (plan.trace) {
     detail::TraceAccess::resync(*plan.trace, res.mesh.triangle_vertices(), "run");

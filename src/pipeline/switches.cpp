@@ -107,14 +107,41 @@ class SwitchString {
 
  private:
   // The run of digits and '.' at the current position (possibly empty).
+  // Triangle's numbers have no exponent: an 'e' followed by a digit or a
+  // sign and a digit (-pa1e-3) is refused with the number to type instead
+  // (a lone 'e' after a number is still the edges switch: -a0.1e).
   std::string_view number() {
     const std::size_t start = i_;
     while (i_ < s_.size() && (std::isdigit(static_cast<unsigned char>(s_[i_])) || s_[i_] == '.')) ++i_;
+    refuse_exponent(start);
     return s_.substr(start, i_ - start);
+  }
+  void refuse_exponent(std::size_t start) const {
+    if (i_ == start || i_ >= s_.size() || (s_[i_] != 'e' && s_[i_] != 'E')) return;
+    std::size_t k = i_ + 1;
+    if (k < s_.size() && (s_[k] == '-' || s_[k] == '+')) ++k;
+    if (k >= s_.size() || !std::isdigit(static_cast<unsigned char>(s_[k]))) return;
+    while (k < s_.size() && std::isdigit(static_cast<unsigned char>(s_[k]))) ++k;
+    exponent_error(start, k);
+  }
+  [[noreturn]] void exponent_error(std::size_t start, std::size_t end) const {
+    const char c = start > 0 ? s_[start - 1] : '?';
+    const std::string written(s_.substr(start, end - start));
+    std::string plain = written;
+    char* stop = nullptr;
+    const double v = std::strtod(written.c_str(), &stop);
+    if (stop && *stop == '\0' && std::isfinite(v)) {
+      char buf[400];  // the shortest fixed-point form that reads back as v
+      const auto r = std::to_chars(buf, buf + sizeof buf, v, std::chars_format::fixed);
+      if (r.ec == std::errc()) plain.assign(buf, r.ptr);
+    }
+    throw UsageError{std::string("-") + c + written + " in '-" + std::string(s_) +
+                     "': switch numbers have no exponent (Triangle's syntax: digits and '.'); type -" + c + plain};
   }
   std::string_view digits() {
     const std::size_t start = i_;
     while (i_ < s_.size() && std::isdigit(static_cast<unsigned char>(s_[i_]))) ++i_;
+    refuse_exponent(start);
     return s_.substr(start, i_ - start);
   }
   static double to_double(char c, std::string_view num) {
@@ -164,19 +191,8 @@ std::size_t edit_distance(std::string_view a, std::string_view b) {
   return row[b.size()];
 }
 
-// "unknown option --time-limt (did you mean --time-limit?)": the nearest
-// known name within a third of its length, if any.
 UsageError unknown_option(const std::string& name) {
-  std::string_view best;
-  std::size_t best_d = name.size() / 3 + 1;
-  const auto nearest = [&](std::string_view known) {
-    const std::size_t d = edit_distance(name, known);
-    if (d < best_d) best_d = d, best = known;
-  };
-  for (std::string_view known : kFlagNames) nearest(known);
-  for (std::string_view known : kValueNames) nearest(known);
-  if (best.empty()) return UsageError{"unknown option " + name + " (see deltamesh --help)"};
-  return UsageError{"unknown option " + name + " (did you mean " + std::string(best) + "?)"};
+  return UsageError{unknown_option_message(name, long_option_names())};
 }
 
 bool is_value_option(std::string_view name) {
@@ -188,6 +204,23 @@ bool is_flag_option(std::string_view name) {
 }
 
 }  // namespace
+
+std::string unknown_option_message(std::string_view name, const std::vector<std::string_view>& known) {
+  std::string_view best;
+  std::size_t best_d = name.size() / 3 + 1;
+  for (std::string_view k : known) {
+    const std::size_t d = edit_distance(name, k);
+    if (d < best_d) best_d = d, best = k;
+  }
+  if (best.empty()) return "unknown option " + std::string(name) + " (see deltamesh --help)";
+  return "unknown option " + std::string(name) + " (did you mean " + std::string(best) + "?)";
+}
+
+std::vector<std::string_view> long_option_names() {
+  std::vector<std::string_view> names(std::begin(kFlagNames), std::end(kFlagNames));
+  names.insert(names.end(), std::begin(kValueNames), std::end(kValueNames));
+  return names;
+}
 
 std::optional<FillRule> parse_fill_rule(std::string_view v) {
   if (v == "holes") return FillRule::Holes;
@@ -216,6 +249,7 @@ void apply_long_option(CommandLine& cl, std::string_view name_view, std::string_
     cl.outputs.push_back(v);
   } else if (name == "--msh-version") {
     const std::string v = std::string(value);
+    cl.msh_version_given = true;
     if (v == "2.2") cl.msh_v22 = true;
     else if (v == "4.1" || v == "4") cl.msh_v22 = false;
     else throw UsageError{"--msh-version=" + v + ": the version must be 2.2 or 4.1"};
@@ -271,8 +305,13 @@ void apply_long_option(CommandLine& cl, std::string_view name_view, std::string_
     if (end == v.c_str() || *end != '\0' || !(t > 0)) throw UsageError{"--time-limit=" + v + ": seconds, a positive number"};
     cl.plan.refine.time_limit = t;
   } else if (name == "--stats") {
+    // json or json:FILE (a bare --stats never takes the next argument: it
+    // would be the input file).
     const std::string v = std::string(value);
-    if (v != "json") throw UsageError{"--stats=" + v + ": the only format is json"};
+    if (v != "json" && v.rfind("json:", 0) != 0)
+      throw UsageError{"--stats=" + v + ": the format is json (--stats=json, or --stats=json:FILE to write it to FILE)"};
+    if (v.size() > 5) cl.stats_path = v.substr(5);
+    else if (v == "json:") throw UsageError{"--stats=json: needs a file name after ':'"};
     cl.stats_json = true;
   } else if (name == "--fill") {
     const std::string v = std::string(value);
@@ -299,7 +338,9 @@ CommandLine parse_arguments(const std::vector<std::string>& args) {
     };
     if (a.rfind("--", 0) == 0) {
       const std::string name = a.substr(0, a.find('='));
-      if (is_value_option(name)) {
+      if (name == "--stats") {
+        apply_long_option(o, name, a.find('=') != std::string::npos ? a.substr(a.find('=') + 1) : "json");
+      } else if (is_value_option(name)) {
         apply_long_option(o, name, value(name));
       } else if (name == "--smooth") {
         // The count is optional: --smooth alone is 3 passes.

@@ -1,6 +1,7 @@
 // Adaptation to a size field: coarsen, refine, smooth; and the refinement
 // owed after smoothing a refined mesh.
 #include "deltamesh/adapt.hpp"
+#include "core/plural.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -14,10 +15,11 @@ using adaptation::Clock;
 using adaptation::seconds_since;
 
 std::string AdaptStats::summary() const {
-  char buf[256];
-  std::snprintf(buf, sizeof buf, "%zu vertices removed, %zu inserted, %zu triangles%s, %.3f s", removed, inserted,
-                triangles, complete ? "" : " (incomplete: see the refinement report)", seconds);
-  return buf;
+  char buf[64];
+  std::snprintf(buf, sizeof buf, ", %.3f s", seconds);
+  return count_of(removed, "vertex", "vertices") + " removed, " + std::to_string(inserted) + " inserted, " +
+         count_of(triangles, "triangle", "triangles") + (complete ? "" : " (incomplete: see the refinement report)") +
+         buf;
 }
 
 SmoothStats smooth_refined(Mesh& mesh, const SmoothOptions& options, const RefineOptions& refine_options,

@@ -9,6 +9,7 @@
 #include <queue>
 
 #include "algo/adapt/common.hpp"
+#include "core/plural.hpp"
 #include "deltamesh/adapt.hpp"
 #include "deltamesh/predicates.hpp"
 #include "mesh/trace_hooks.hpp"
@@ -404,8 +405,9 @@ class Coarsener {
 
 std::string CoarsenStats::summary() const {
   char buf[256];
-  std::snprintf(buf, sizeof buf, "%zu -> %zu vertices (%zu removed, %zu of them on segments; %zu kept: star not emptied), %zu flips, %.3f s",
-                vertices_before, vertices_after, removed, removed_on_segments, refused, flips, seconds);
+  std::snprintf(buf, sizeof buf, "%zu -> %s (%zu removed, %zu of them on segments; %zu kept: star not emptied), %s, %.3f s",
+                vertices_before, count_of(vertices_after, "vertex", "vertices").c_str(), removed, removed_on_segments,
+                refused, count_of(flips, "flip", "flips").c_str(), seconds);
   return buf;
 }
 

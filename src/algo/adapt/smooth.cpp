@@ -9,6 +9,7 @@
 #include <numbers>
 
 #include "algo/adapt/common.hpp"
+#include "core/plural.hpp"
 #include "algo/cdt_builder.hpp"
 #include "core/angles.hpp"
 #include "deltamesh/adapt.hpp"
@@ -190,13 +191,11 @@ class Smoother {
 }  // namespace
 
 std::string SmoothStats::summary() const {
-  char buf[320];
-  std::snprintf(buf, sizeof buf,
-                "%zu moves in %zu passes (%zu refused), %zu flips; smallest angle %.2f -> %.2f deg, mean smallest "
-                "angle %.2f -> %.2f deg, %.3f s",
-                moved, passes, rejected, flips, min_angle_before, min_angle_after, mean_min_angle_before,
-                mean_min_angle_after, seconds);
-  return buf;
+  char buf[200];
+  std::snprintf(buf, sizeof buf, "; smallest angle %.2f -> %.2f deg, mean smallest angle %.2f -> %.2f deg, %.3f s",
+                min_angle_before, min_angle_after, mean_min_angle_before, mean_min_angle_after, seconds);
+  return count_of(moved, "move", "moves") + " in " + count_of(passes, "pass", "passes") + " (" +
+         std::to_string(rejected) + " refused), " + count_of(flips, "flip", "flips") + buf;
 }
 
 SmoothStats smooth(Mesh& mesh, const SmoothOptions& options) {

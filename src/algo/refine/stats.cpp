@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "algo/refine/refiner.hpp"
+#include "core/plural.hpp"
 #include "mesh/editor.hpp"
 
 namespace deltamesh::refinement {
@@ -67,16 +68,18 @@ std::string RefineStats::summary() const {
         << stall_radius << " of (" << stall_x << ", " << stall_y << "); " << reached_angle_deg
         << "° reached outside small input angles";
     if (discarded_steiner)
-      out << ", the mesh refined to " << kept_angle_deg << "° kept, " << discarded_steiner << " later Steiner points dropped";
+      out << ", the mesh refined to " << kept_angle_deg << "° kept, "
+          << count_of(discarded_steiner, "later Steiner point", "later Steiner points") << " dropped";
     out << ")";
   } else if (budget_exhausted) {
     out << " (Steiner budget reached)";
   }
   if (time_exhausted) out << " (time limit reached)";
-  out << ": " << steiner_points << " Steiner points (" << segment_splits << " on segments, " << interior_points
-      << " inside, " << offcenters << " off-centres), " << rejected_points << " encroaching points rejected";
+  out << ": " << count_of(steiner_points, "Steiner point", "Steiner points") << " (" << segment_splits
+      << " on segments, " << interior_points << " inside, " << count_of(offcenters, "off-centre", "off-centres")
+      << "), " << count_of(rejected_points, "encroaching point", "encroaching points") << " rejected";
   if (below_bound > 0) {
-    out << "; " << below_bound << " triangles below " << min_angle_deg << "°:";
+    out << "; " << count_of(below_bound, "triangle", "triangles") << " below " << min_angle_deg << "°:";
     if (below_small_input_angle) out << " " << below_small_input_angle << " at input angles < 60°";
     if (below_segment_protected) out << " " << below_segment_protected << " need a split -Y forbids";
     if (below_budget) out << " " << below_budget << " left by the budget";
@@ -84,7 +87,8 @@ std::string RefineStats::summary() const {
     if (below_precision) out << " " << below_precision << " at the precision of doubles";
   }
   if (too_large > 0) {
-    out << "; " << too_large << " triangles above their size bound";
+    out << "; " << count_of(too_large, "triangle", "triangles") << " above "
+        << (too_large == 1 ? "its" : "their") << " size bound";
     if (too_large_precision) out << " (" << too_large_precision << " at the precision of doubles)";
   }
   return out.str();
