@@ -31,7 +31,7 @@ echo "wheel_test: built $(basename "$wheel")"
 # The metadata: name, the project's version, licence, numpy, optional matplotlib.
 version=$(sed -n 's/^project(deltamesh VERSION \([0-9.]*\).*/\1/p' "$src/CMakeLists.txt")
 "$python" - "$wheel" "$version" <<'PY'
-import sys, zipfile
+import re, sys, zipfile
 wheel, version = sys.argv[1:]
 with zipfile.ZipFile(wheel) as z:
     names = z.namelist()
@@ -44,7 +44,7 @@ if get("Version") != [version]: problems.append(f"Version {get('Version')} (CMak
 if not get("License") or not get("License")[0].strip(): problems.append("no License")
 if not any(r.startswith("numpy") for r in get("Requires-Dist")): problems.append("numpy not required")
 if "plot" not in get("Provides-Extra"): problems.append("no 'plot' extra")
-if not any(r.startswith("matplotlib") and 'extra == "plot"' in r for r in get("Requires-Dist")):
+if not any(r.startswith("matplotlib") and re.search(r"extra == ['\"]plot['\"]", r) for r in get("Requires-Dist")):
     problems.append("matplotlib not in the 'plot' extra")
 for want in ("deltamesh/__init__.py", "deltamesh/data.py", "deltamesh/plot.py", "deltamesh/data/ell.1.node"):
     if want not in names: problems.append(f"{want} not in the wheel")
