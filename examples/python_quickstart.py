@@ -20,9 +20,9 @@ plate = deltamesh.read(os.path.join(here, "plate.poly"))
 print({k: v.shape for k, v in plate.items()})
 
 # Triangle's switches: p (segments, holes), q30 (min angle), a0.05 (max
-# area), A (regional attribute per triangle).
-mesh = deltamesh.triangulate(plate, "pq30a0.05A")
-stats = mesh["stats"]
+# area), A (regional attribute per triangle). stats=True adds the run's
+# report: (mesh, stats) instead of the `triangle` package's mesh dict alone.
+mesh, stats = deltamesh.triangulate(plate, "pq30a0.05A", stats=True)
 print(f"{len(mesh['vertices'])} vertices, {len(mesh['triangles'])} triangles, "
       f"{stats['steiner_points']} Steiner points, smallest angle {stats['min_angle']:.2f} degrees, "
       f"complete: {stats['complete']}")

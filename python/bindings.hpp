@@ -44,6 +44,9 @@ void raise_with(PyObject* type, const std::string& message,
 // numpy arrays in (convert.cpp)
 
 bool given(py::handle h);
+// At least three points, all on one line (exact orient2d; duplicates count
+// as on it): Triangle's package returns the vertices and no triangles.
+bool all_collinear(const std::vector<Point>& p);
 bool ends_with(const std::string& s, std::string_view suffix);
 // The shortest text that reads back as x.
 std::string number_text(double x);
@@ -85,9 +88,29 @@ py::array_t<T> array_2d(const std::vector<T>& v, std::size_t cols) {
 }
 
 
+// Triangle's output switches that a Plan does not hold (they name files on
+// the command line): -N, -E, -P drop arrays, -v adds the Voronoi diagram.
+struct OutputSwitches {
+  bool no_node = false, no_ele = false, no_poly = false, voronoi = false;
+};
+
+// An output edge: its ends, marker, and whether it is on the boundary.
+struct OutEdge {
+  std::int32_t a = 0, b = 0;
+  int marker = 0;
+  bool boundary = false;
+};
+// Boundary edges given counter-clockwise (interior on the left) in
+// Triangle's hull order: cycle by cycle from the lowest-leftmost vertex,
+// each edge reversed (the interior on its right), as convex_hull() returns.
+std::vector<OutEdge> triangle_boundary_order(const Mesh& mesh, std::vector<OutEdge> ccw);
+
 // The result dict, Triangle's keys and layout (markers as (n, 1) int32);
-// holes and regions are the input's (written back with 'p').
-py::dict mesh_dict(const RunResult& res, const Plan& plan, const Pslg& seeds);
+// `seeds` holds the input's segments (their order is kept), holes and
+// regions (written back with 'p'). Arrays with no rows are left out.
+py::dict mesh_dict(const RunResult& res, const Plan& plan, const Pslg& seeds, const OutputSwitches& sw = {});
+// {vertices, edges (finite), ray_origins, ray_directions}: the voronoi() tuple as a dict.
+py::dict voronoi_arrays(const Mesh& mesh);
 // stats: counts, extreme angles, refinement, warnings, -C's summary.
 py::dict stats_dict(const RunResult& res);
 py::dict pslg_dict(const Pslg& p);
@@ -114,9 +137,10 @@ Plan keyword_plan(const Keywords& k);
 // ---------------------------------------------------------------------------
 // Entry points (triangulate.cpp, tools.cpp)
 
-py::dict triangulate_dict(const py::dict& tri, const std::string& opts, py::object max_area_fn,
-                          py::object max_edge_fn, py::object trace);
-py::dict triangulate_kw(py::object vertices, py::object segments, py::object holes, py::object regions,
+// Both return the result dict, or (dict, stats) with stats=True.
+py::object triangulate_dict(const py::dict& tri, const std::string& opts, py::object max_area_fn,
+                            py::object max_edge_fn, bool stats, py::object trace);
+py::object triangulate_kw(py::object vertices, py::object segments, py::object holes, py::object regions,
                         py::object vertex_markers, py::object vertex_attributes, py::object segment_markers,
                         py::object triangles, py::object triangle_attributes, py::object triangle_max_area,
                         py::object min_angle, py::object max_area, bool regional_area, py::object max_steiner,
@@ -125,7 +149,7 @@ py::dict triangulate_kw(py::object vertices, py::object segments, py::object hol
                         bool ignore_holes, const std::string& fill, const std::string& cdt, bool strict,
                         const std::string& steiner, const std::string& encroachment, const std::string& order,
                         py::object time_limit, bool jettison, bool second_order, bool edges, bool neighbors, bool check,
-                        bool markers, bool quiet, py::object trace);
+                        bool markers, bool quiet, bool stats, py::object trace);
 py::dict adapt_dict(const py::dict& tri, py::object size, const std::string& opts, int smooth);
 py::dict check_dict(const py::dict& tri, bool delaunay, bool convex_hull, bool segments);
 py::dict validate_dict(const py::dict& tri, bool delaunay, bool convex_hull, bool segments);
@@ -134,6 +158,6 @@ py::dict read_file(const std::string& path);
 void write_file(const py::dict& tri, const std::string& path, int first_index, bool markers);
 py::array_t<std::int32_t> delaunay_triangles(py::handle vertices);
 py::array_t<std::int32_t> hull_segments(py::handle vertices);
-py::dict voronoi_dict(py::handle vertices);
+py::tuple voronoi_tuple(py::handle vertices);
 
 }  // namespace deltamesh::python

@@ -83,10 +83,24 @@ Ints to_ints(py::handle obj, const std::string& name, std::size_t want_cols,
              std::size_t rows_expected = static_cast<std::size_t>(-1)) {
   py::array a = as_array(obj, name);
   const char kind = a.dtype().kind();
-  if (kind != 'i' && kind != 'u' && !(kind == 'f' && a.size() == 0))  // [] is float64 to numpy
+  if (kind != 'i' && kind != 'u' && kind != 'f')
     bad(name, "expected integers, got dtype " + dtype_name(a));
   Ints r;
   std::tie(r.rows, r.cols) = rows_cols(a, name, want_cols, rows_expected);
+  if (kind == 'f') {
+    // Triangle's package casts float indices; a whole number is taken as
+    // it is, a fraction is an error rather than a silent truncation.
+    const Doubles d = to_doubles(obj, name, want_cols, rows_expected);
+    r.v.resize(d.v.size());
+    for (std::size_t i = 0; i < d.v.size(); ++i) {
+      const double x = d.v[i];
+      if (std::floor(x) != x || std::abs(x) > 9.0e15)
+        bad(name, "value " + number_text(x) + " in row " + std::to_string(i / std::max<std::size_t>(d.cols, 1)) +
+                      " is not a whole number");
+      r.v[i] = static_cast<std::int64_t>(x);
+    }
+    return r;
+  }
   auto c = py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>::ensure(a);
   if (!c) throw py::error_already_set();
   r.v.assign(c.data(), c.data() + r.rows * r.cols);
@@ -130,6 +144,19 @@ bool ends_with(const std::string& s, std::string_view suffix) {
 }
 
 bool given(py::handle h) { return h && !h.is_none(); }
+
+// All points on one line (exact orient2d): Triangle's package returns the
+// vertices and no triangles, where the library refuses the input.
+bool all_collinear(const std::vector<Point>& p) {
+  if (p.size() < 3) return false;  // too few points: the library's error, as Triangle's
+  std::size_t b = 1;
+  while (b < p.size() && p[b].x == p[0].x && p[b].y == p[0].y) ++b;
+  if (b == p.size()) return true;
+  for (std::size_t c = b + 1; c < p.size(); ++c)
+    if (orient2d(p[0], p[b], p[c]) != 0) return false;
+  return true;
+}
+
 
 Input read_input(const InputArrays& a) {
   Input in;
@@ -200,7 +227,7 @@ Input read_input(const InputArrays& a) {
 constexpr std::string_view kInputKeys[] = {
     "vertices", "vertex_markers", "vertex_attributes",   "segments",         "segment_markers", "holes",
     "regions",  "triangles",      "triangle_attributes", "triangle_max_area"};
-constexpr std::string_view kIgnoredKeys[] = {"edges", "edge_markers", "neighbors", "stats"};
+constexpr std::string_view kIgnoredKeys[] = {"edges", "edge_markers", "neighbors", "stats", "voronoi"};
 
 InputArrays arrays_from_dict(const py::dict& d) {
   for (auto item : d) {
@@ -261,26 +288,130 @@ py::dict refine_stats_dict(const RefineStats& s) {
 // for each call; the first exception (or a non-finite value) stops the
 // calls and is re-raised when refinement returns.
 
-py::dict mesh_dict(const RunResult& res, const Plan& o, const Pslg& seeds) {
+namespace {
+
+// Output ordering only (nothing in the mesh depends on it): how far `w`
+// lies along the way from `from` to `to`, as a cosine and a length ratio.
+bool continues_towards(const Point& from, const Point& w, const Point& to, double* cos_out) {
+  const double ux = w.x - from.x, uy = w.y - from.y, vx = to.x - from.x, vy = to.y - from.y;
+  const double lu = std::hypot(ux, uy), lv = std::hypot(vx, vy);
+  if (!(lu > 0) || !(lv > 0) || lu > lv * (1 + 1e-9)) return false;
+  *cos_out = (ux * vx + uy * vy) / (lu * lv);
+  return *cos_out > 1 - 1e-9;
+}
+
+}  // namespace
+
+std::vector<OutEdge> triangle_boundary_order(const Mesh& mesh, std::vector<OutEdge> ccw) {
+  std::vector<OutEdge> out;
+  out.reserve(ccw.size());
+  std::vector<std::vector<std::size_t>> from(mesh.num_vertices());
+  for (std::size_t i = 0; i < ccw.size(); ++i) from[static_cast<std::size_t>(ccw[i].a)].push_back(i);
+  std::vector<bool> used(ccw.size(), false);
+  // Cycle by cycle, each from its lowest-leftmost vertex (x, then y).
+  std::vector<std::size_t> by_origin(ccw.size());
+  for (std::size_t i = 0; i < ccw.size(); ++i) by_origin[i] = i;
+  std::stable_sort(by_origin.begin(), by_origin.end(), [&](std::size_t i, std::size_t j) {
+    const Point& p = mesh.point(static_cast<VertexId>(ccw[i].a));
+    const Point& q = mesh.point(static_cast<VertexId>(ccw[j].a));
+    return p.x < q.x || (p.x == q.x && p.y < q.y);
+  });
+  for (const std::size_t first : by_origin) {
+    std::size_t e = first;
+    while (!used[e]) {
+      used[e] = true;
+      out.push_back({ccw[e].b, ccw[e].a, ccw[e].marker, true});  // reversed: the interior on the right
+      std::size_t next = ccw.size();
+      for (const std::size_t k : from[static_cast<std::size_t>(ccw[e].b)])
+        if (!used[k]) {
+          next = k;
+          break;
+        }
+      if (next == ccw.size()) break;
+      e = next;
+    }
+  }
+  return out;
+}
+
+namespace {
+
+// Segments in the order of the input: each input segment's pieces from its
+// first end to its second, then what no input segment explains (hull edges
+// of 'c', pieces of segments split where they crossed) as Triangle lists a
+// boundary, then the rest in triangle order.
+std::vector<OutEdge> input_order(const Mesh& mesh, const std::vector<OutEdge>& found,
+                                 const std::vector<Segment>& input) {
+  std::vector<std::vector<std::size_t>> at(mesh.num_vertices());
+  for (std::size_t i = 0; i < found.size(); ++i) {
+    at[static_cast<std::size_t>(found[i].a)].push_back(i);
+    at[static_cast<std::size_t>(found[i].b)].push_back(i);
+  }
+  std::vector<bool> used(found.size(), false);
+  std::vector<OutEdge> out;
+  out.reserve(found.size());
+  for (const Segment& s : input) {
+    if (s.a == s.b || s.a >= mesh.num_vertices() || s.b >= mesh.num_vertices()) continue;
+    const Point& to = mesh.point(s.b);
+    std::size_t cur = s.a;
+    for (std::size_t steps = 0; cur != s.b && steps < found.size(); ++steps) {
+      std::size_t best = found.size();
+      double best_cos = -2;
+      for (const std::size_t k : at[cur]) {
+        if (used[k]) continue;
+        const std::size_t w = static_cast<std::size_t>(found[k].a) == cur ? found[k].b : found[k].a;
+        double c = 0;
+        if (w == s.b || continues_towards(mesh.point(static_cast<VertexId>(cur)), mesh.point(static_cast<VertexId>(w)),
+                                          to, &c)) {
+          if (w == s.b) c = 2;
+          if (c > best_cos) best_cos = c, best = k;
+        }
+      }
+      if (best == found.size()) break;
+      used[best] = true;
+      const std::size_t w = static_cast<std::size_t>(found[best].a) == cur ? found[best].b : found[best].a;
+      out.push_back({static_cast<std::int32_t>(cur), static_cast<std::int32_t>(w), found[best].marker,
+                     found[best].boundary});
+      cur = w;
+    }
+  }
+  std::vector<OutEdge> boundary, interior;
+  for (std::size_t i = 0; i < found.size(); ++i)
+    if (!used[i]) (found[i].boundary ? boundary : interior).push_back(found[i]);
+  for (const OutEdge& e : triangle_boundary_order(mesh, std::move(boundary))) out.push_back(e);
+  out.insert(out.end(), interior.begin(), interior.end());
+  return out;
+}
+
+// Triangle's package leaves out every array with no rows.
+void put(py::dict& out, const char* key, py::array a) {
+  if (a.ndim() >= 1 && a.shape(0) > 0) out[key] = std::move(a);
+}
+
+}  // namespace
+
+py::dict mesh_dict(const RunResult& res, const Plan& o, const Pslg& seeds, const OutputSwitches& sw) {
   const Mesh& mesh = res.mesh;
   py::dict out;
   const std::size_t nv = mesh.num_vertices();
-  std::vector<double> xy(2 * nv);
-  for (std::size_t i = 0; i < nv; ++i) {
-    xy[2 * i] = mesh.point(static_cast<VertexId>(i)).x;
-    xy[2 * i + 1] = mesh.point(static_cast<VertexId>(i)).y;
-  }
-  out["vertices"] = array_2d(xy, 2);
-  if (o.markers) {
-    std::vector<std::int32_t> vm(nv, 0);
-    const auto& mk = mesh.vertex_markers();
-    for (std::size_t i = 0; i < std::min(nv, mk.size()); ++i) vm[i] = mk[i];
-    out["vertex_markers"] = array_2d(vm, 1);
-  }
-  if (mesh.num_vertex_attributes() > 0) {
-    std::vector<double> va(mesh.vertex_attributes().begin(), mesh.vertex_attributes().end());
-    va.resize(nv * mesh.num_vertex_attributes(), 0.0);
-    out["vertex_attributes"] = array_2d(va, mesh.num_vertex_attributes());
+  if (!sw.no_node) {
+    std::vector<double> xy(2 * nv);
+    for (std::size_t i = 0; i < nv; ++i) {
+      xy[2 * i] = mesh.point(static_cast<VertexId>(i)).x;
+      xy[2 * i + 1] = mesh.point(static_cast<VertexId>(i)).y;
+    }
+    put(out, "vertices", array_2d(xy, 2));
+    if (o.markers) {
+      std::vector<std::int32_t> vm(nv, 0);
+      const auto& mk = mesh.vertex_markers();
+      for (std::size_t i = 0; i < std::min(nv, mk.size()); ++i) vm[i] = mk[i];
+      put(out, "vertex_markers", array_2d(vm, 1));
+    }
+    if (mesh.num_vertex_attributes() > 0) {
+      std::vector<double> va(mesh.vertex_attributes().begin(), mesh.vertex_attributes().end());
+      va.resize(nv * mesh.num_vertex_attributes(), 0.0);
+      put(out, "vertex_attributes", array_2d(va, mesh.num_vertex_attributes()));
+    }
   }
 
   // Triangles in slot order (the mesh is compacted: every slot is real).
@@ -291,6 +422,8 @@ py::dict mesh_dict(const RunResult& res, const Plan& o, const Pslg& seeds) {
     if (mesh.is_real(t)) index[t] = static_cast<TriId>(nt++);
   const std::size_t corners = res.midside.empty() ? 3 : 6;
   const std::size_t na = mesh.num_triangle_attributes();
+  // -A appends a column; with no regions Triangle's package has none.
+  const std::size_t na_out = o.domain.regional_attributes && seeds.regions.empty() && na > 0 ? na - 1 : na;
   std::vector<std::int32_t> tris;
   std::vector<double> tattr;
   std::vector<std::int32_t> neigh;
@@ -301,7 +434,7 @@ py::dict mesh_dict(const RunResult& res, const Plan& o, const Pslg& seeds) {
     if (corners == 6)
       for (std::size_t k = 0; k < 3; ++k)
         tris.push_back(static_cast<std::int32_t>(res.midside[3 * std::size_t{t} + k]));
-    for (std::size_t k = 0; k < na; ++k) tattr.push_back(mesh.triangle_attributes()[t * na + k]);
+    for (std::size_t k = 0; k < na_out; ++k) tattr.push_back(mesh.triangle_attributes()[t * na + k]);
     if (o.neighbors)
       for (HalfEdgeId i = 0; i < 3; ++i) {
         // Neighbour i is opposite vertex i, across half-edge 3t + (i+1)%3.
@@ -309,13 +442,16 @@ py::dict mesh_dict(const RunResult& res, const Plan& o, const Pslg& seeds) {
         neigh.push_back(tw == kNone ? -1 : static_cast<std::int32_t>(index[tri_of(tw)]));
       }
   }
-  out["triangles"] = array_2d(tris, corners);
-  if (na > 0) out["triangle_attributes"] = array_2d(tattr, na);
-  if (o.neighbors) out["neighbors"] = array_2d(neigh, 3);
+  if (!sw.no_ele) {
+    put(out, "triangles", array_2d(tris, corners));
+    if (na_out > 0) put(out, "triangle_attributes", array_2d(tattr, na_out));
+  }
+  if (o.neighbors) put(out, "neighbors", array_2d(neigh, 3));
 
   // Edges once each; segments are the constrained ones.
-  const bool want_segments = o.uses_segments() || o.domain.convex_hull;
-  std::vector<std::int32_t> seg, seg_mk, edges, edge_mk;
+  const bool want_segments = (o.uses_segments() || o.domain.convex_hull) && !sw.no_poly;
+  std::vector<OutEdge> found;
+  std::vector<std::int32_t> edges, edge_mk;
   for (TriId t = 0; t < slots; ++t) {
     if (index[t] == kNone) continue;
     for (HalfEdgeId e = 3 * t; e < 3 * t + 3; ++e) {
@@ -327,31 +463,62 @@ py::dict mesh_dict(const RunResult& res, const Plan& o, const Pslg& seeds) {
         edges.insert(edges.end(), {a, b});
         edge_mk.push_back(marker);
       }
-      if (want_segments && (mesh.is_constrained(e) || (tw != kNone && mesh.is_constrained(tw)))) {
-        seg.insert(seg.end(), {a, b});
-        seg_mk.push_back(marker);
-      }
+      if (want_segments && (mesh.is_constrained(e) || (tw != kNone && mesh.is_constrained(tw))))
+        found.push_back({a, b, marker, tw == kNone});
     }
   }
   if (want_segments) {
-    out["segments"] = array_2d(seg, 2);
-    if (o.markers) out["segment_markers"] = array_2d(seg_mk, 1);
+    std::vector<std::int32_t> seg, seg_mk;
+    for (const OutEdge& e : input_order(mesh, found, seeds.segments)) {
+      seg.insert(seg.end(), {e.a, e.b});
+      seg_mk.push_back(e.marker);
+    }
+    put(out, "segments", array_2d(seg, 2));
+    if (o.markers) put(out, "segment_markers", array_2d(seg_mk, 1));
   }
   if (o.edges) {
-    out["edges"] = array_2d(edges, 2);
-    if (o.markers) out["edge_markers"] = array_2d(edge_mk, 1);
+    put(out, "edges", array_2d(edges, 2));
+    if (o.markers) put(out, "edge_markers", array_2d(edge_mk, 1));
   }
-  if (o.uses_segments() && !seeds.holes.empty()) {
+  if (o.uses_segments() && !sw.no_poly) {
     std::vector<double> h;
     for (const Point& p : seeds.holes) h.insert(h.end(), {p.x, p.y});
-    out["holes"] = array_2d(h, 2);
-  }
-  if (o.uses_segments() && !seeds.regions.empty()) {
+    put(out, "holes", array_2d(h, 2));
     std::vector<double> r;
     for (const RegionSeed& s : seeds.regions) r.insert(r.end(), {s.p.x, s.p.y, s.attribute, s.max_area});
-    out["regions"] = array_2d(r, 4);
+    put(out, "regions", array_2d(r, 4));
   }
+  if (sw.voronoi) out["voronoi"] = voronoi_arrays(mesh);
   return out;
+}
+
+// Triangle's -v output as the package's voronoi() gives it: the Voronoi
+// vertices, the finite edges, and each ray's origin and direction.
+py::dict voronoi_arrays(const Mesh& mesh) {
+  VoronoiDiagram vd;
+  {
+    py::gil_scoped_release nogil;
+    vd = voronoi_diagram(mesh);
+  }
+  std::vector<double> xy, dir;
+  std::vector<std::int32_t> edges, origins;
+  for (const Point& p : vd.vertices) xy.insert(xy.end(), {p.x, p.y});
+  for (const auto& e : vd.edges) {
+    if (e.is_ray()) {
+      origins.push_back(static_cast<std::int32_t>(e.a));
+      dir.insert(dir.end(), {e.direction.x + 0.0, e.direction.y + 0.0});  // no -0.0
+    } else {
+      edges.insert(edges.end(), {static_cast<std::int32_t>(e.a), static_cast<std::int32_t>(e.b)});
+    }
+  }
+  py::dict d;
+  d["vertices"] = array_2d(xy, 2);
+  d["edges"] = array_2d(edges, 2);
+  py::array_t<std::int32_t> o(static_cast<py::ssize_t>(origins.size()));
+  std::copy(origins.begin(), origins.end(), o.mutable_data());
+  d["ray_origins"] = o;
+  d["ray_directions"] = array_2d(dir, 2);
+  return d;
 }
 
 // The smallest and largest angle of the mesh in degrees. quality_report()

@@ -56,7 +56,7 @@ void translate_exception(std::exception_ptr p) {
 using namespace deltamesh::python;
 namespace dm = deltamesh;
 
-PYBIND11_MODULE(deltamesh, m) {
+PYBIND11_MODULE(_deltamesh, m) {
   m.doc() = R"(deltamesh: 2-D constrained Delaunay triangulation and quality meshing.
 
 triangulate(dict, 'pq30a0.1') takes and returns Triangle's dict of numpy
@@ -82,7 +82,7 @@ handle Triangle's files and the other formats. See docs/python.md.)";
   py::register_exception_translator(&translate_exception);
 
   m.def("triangulate", &triangulate_dict, py::arg("tri"), py::arg("opts") = "", py::kw_only(),
-        py::arg("max_area_fn") = py::none(), py::arg("max_edge_fn") = py::none(), py::arg("trace") = py::none(),
+        py::arg("max_area_fn") = py::none(), py::arg("max_edge_fn") = py::none(), py::arg("stats") = false, py::arg("trace") = py::none(),
         R"(Triangle's form: triangulate(tri: dict, opts: str = '') -> dict.
 
 tri holds numpy arrays (or lists): vertices (n, 2) float, and optionally
@@ -90,15 +90,20 @@ vertex_markers (n,) or (n, 1), vertex_attributes (n, k), segments (s, 2) int
 (0-based), segment_markers, holes (h, 2), regions (r, 4): x, y, attribute,
 maximum area; for 'r' also triangles (m, 3), triangle_attributes,
 triangle_max_area. opts is Triangle's switch string, e.g. 'pq30a0.1'
-(p: use segments/holes, q[angle], a[area], c, A, O, D, Y, S[n], j, e, n, o2,
-r, C, Q, V, B; long options such as '--cdt=lawson' may follow after a
-space). Unknown switches raise ValueError.
+(p r q a c A O D Y S j e n o2 C Q V B z, and the output switches v N E P;
+i F l X s u g I are accepted with a warning that they change nothing;
+long options such as '--cdt=lawson' may follow after a space). Unknown
+switches raise ValueError.
 
-Returns a dict: vertices (N, 2) float64, vertex_markers (N, 1) int32,
-triangles (M, 3) int32 (M, 6 with o2), triangle_attributes (M, k) with A,
-segments/segment_markers with p or c, edges/edge_markers with e, neighbors
-(M, 3) with n (-1: none), holes/regions with p, and stats (a dict:
-complete, steiner_points, min_angle, refine details, warnings...).)");
+Returns the `triangle` package's dict: vertices (N, 2) float64,
+vertex_markers (N, 1) int32, triangles (M, 3) int32 (M, 6 with o2),
+triangle_attributes (M, k) with A and regions, segments/segment_markers
+with p or c (input segments first, in their order), edges/edge_markers
+with e, neighbors (M, 3) with n (-1: none), holes/regions with p, and
+voronoi (a dict: vertices, edges, ray_origins, ray_directions) with v.
+Arrays with no rows are left out. stats=True returns (dict, stats), stats
+being the run's report (complete, steiner_points, min_angle, refine
+details, warnings...).)");
 
   m.def("triangulate", &triangulate_kw, py::arg("vertices"), py::arg("segments") = py::none(),
         py::arg("holes") = py::none(), py::arg("regions") = py::none(), py::kw_only(),
@@ -113,7 +118,7 @@ complete, steiner_points, min_angle, refine details, warnings...).)");
         py::arg("encroachment") = "lens", py::arg("order") = "shortest", py::arg("time_limit") = py::none(),
         py::arg("jettison") = false, py::arg("second_order") = false, py::arg("edges") = false,
         py::arg("neighbors") = false, py::arg("check") = false, py::arg("markers") = true, py::arg("quiet") = false,
-        py::arg("trace") = py::none(),
+        py::arg("stats") = false, py::arg("trace") = py::none(),
         R"(Keyword form: triangulate(vertices, segments=None, holes=None, regions=None, *, ...) -> dict.
 
 Same result as Triangle's form. Segments (or triangles) switch on 'p'
@@ -125,8 +130,9 @@ jettison 'j', second_order 'o2', edges 'e', neighbors 'n', check 'C',
 markers=False 'B', quiet 'Q'; triangles=... is 'r'. fill, cdt, steiner,
 encroachment, order, time_limit are the command line's long options.
 max_area_fn(x, y) / max_edge_fn(x, y): size functions evaluated at triangle
-centroids (<= 0: no bound there); they refine like max_area. trace=PATH writes
-every step of the run as JSON Lines (docs/trace.md).)");
+centroids (<= 0: no bound there); they refine like max_area.
+stats=True returns (dict, stats). trace=PATH writes every step of the run as
+JSON Lines (docs/trace.md).)");
 
   m.def("adapt", &adapt_dict, py::arg("mesh"), py::arg("size"), py::arg("opts") = "q", py::kw_only(),
         py::arg("smooth") = 2,
@@ -145,14 +151,16 @@ removed, inserted, smoothed, triangles, complete.)");
         "Delaunay triangulation of points: the (M, 3) int32 triangles (counter-clockwise) of triangulate({'vertices': "
         "v}).");
   m.def("convex_hull", &hull_segments, py::arg("vertices"),
-        "Convex hull edges of points as (H, 2) int32 vertex pairs, counter-clockwise around the hull (points on "
-        "a hull edge split it).");
-  m.def("voronoi", &voronoi_dict, py::arg("vertices"),
-        R"(Voronoi diagram of points (the dual of their Delaunay triangulation):
-vertices (V, 2) float64, one circumcentre per Delaunay triangle (in
-delaunay()'s order); edges (E, 2) int32, one per Delaunay edge, the second
-end -1 for an infinite ray; ray_directions (E, 2) float64, the outward
-direction of each ray (0, 0 for finite edges).)");
+        "Convex hull edges of points as (H, 2) int32 vertex pairs in Triangle's order: the hull walked from its "
+        "lowest-leftmost vertex, each edge with the interior on its right (points on a hull edge split it).");
+  m.def("voronoi", &voronoi_tuple, py::arg("vertices"),
+        R"(Voronoi diagram of points (the dual of their Delaunay triangulation), as
+the `triangle` package returns it: (points, edges, ray_origins,
+ray_directions). points (V, 2) float64, one circumcentre per Delaunay
+triangle (in delaunay()'s order); edges (E, 2) int32, the finite edges;
+ray_origins (R,) int32, the Voronoi vertex each infinite ray starts at;
+ray_directions (R, 2) float64, its outward direction (the hull edge's
+normal, as long as that edge).)");
 
   m.def("check", &check_dict, py::arg("mesh"), py::kw_only(), py::arg("delaunay") = true,
         py::arg("convex_hull") = false, py::arg("segments") = true,

@@ -52,23 +52,32 @@ constexpr std::string_view kLongOptions[] = {"--cdt",
                                              "--no-exact",
                                              "--split-segments"};
 
-// Triangle switches that are about files or need a compiled-in function.
+// Triangle switches refused: -h prints help and would end a program.
 std::optional<std::string> refused_switch(char c) {
+  if (c == 'h') return std::string("-h prints the command line help: see help(deltamesh.triangulate)");
+  return std::nullopt;
+}
+
+// Switches Triangle accepts that change nothing here: a Python warning
+// names each (the call still runs, as with Triangle).
+const char* no_effect_reason(char c) {
   switch (c) {
-    case 'N':
-      return "-N (no .node file) would drop the vertices; there are no files here";
-    case 'E':
-      return "-E (no .ele file) would drop the triangles; there are no files here";
-    case 'g':
-      return "-g writes an .off file: use deltamesh.write(mesh, 'out.off')";
-    case 'v':
-      return "-v (Voronoi diagram): use deltamesh.voronoi(vertices)";
-    case 'h':
-      return "-h prints the command line help: see help(deltamesh.triangulate)";
+    case 'i':
+    case 'F':
+    case 'l':
+      return "it picks Triangle's Delaunay algorithm; deltamesh has its own and the triangulation is the same";
+    case 'X':
+      return "deltamesh always uses exact predicates";
+    case 's':
+      return "segments are always inserted by constrained Delaunay triangulation";
     case 'u':
-      return "-u (user size function): pass max_area_fn=f(x, y) to the keyword form of deltamesh.triangulate";
+      return "Triangle's compiled-in triunsuitable() does not exist here: pass max_area_fn=f(x, y)";
+    case 'g':
+      return "no .off file is written: use deltamesh.write(mesh, 'out.off')";
+    case 'I':
+      return "there are no output files, hence no iteration numbers";
     default:
-      return std::nullopt;
+      return nullptr;
   }
 }
 
@@ -83,6 +92,11 @@ std::string unavailable_long_option(const std::string& name, const std::string& 
   const std::string_view cli_hint = " (see deltamesh --help)";
   if (ends_with(msg, cli_hint)) msg.resize(msg.size() - cli_hint.size());
   return "bad switches '" + opts + "': " + msg;
+}
+
+void warn_no_effect(char c) {
+  const std::string msg = std::string("deltamesh: switch -") + c + " has no effect: " + no_effect_reason(c);
+  if (PyErr_WarnEx(PyExc_UserWarning, msg.c_str(), 3) < 0) throw py::error_already_set();
 }
 
 }  // namespace
@@ -125,7 +139,19 @@ CommandLine parse_switches(const std::string& opts) {
     // One at a time first, so that "--cdt" without "=value" cannot take the next token as its value.
     for (const std::string& a : args) (void)parse_arguments({a});
     CommandLine o = parse_arguments(args);
-    if (!o.unavailable.empty()) throw py::value_error("switch " + o.unavailable.front() + " is not available");
+    for (const std::string& u : o.unavailable)
+      if (u.rfind("-u", 0) != 0) throw py::value_error("switch " + u + " is not available");
+    std::string warned;
+    for (const std::string& a : args) {
+      if (a.rfind("--", 0) == 0) continue;
+      for (std::size_t k = 1; k < a.size(); ++k) {
+        const char c = a[k];
+        if (no_effect_reason(c) && warned.find(c) == std::string::npos) {
+          warned += c;
+          warn_no_effect(c);
+        }
+      }
+    }
     return o;
   } catch (const UsageError& e) {
     std::string msg = e.what();

@@ -197,11 +197,12 @@ void write_file(const py::dict& tri, const std::string& path, int first_index, b
 namespace {
 
 // The Delaunay triangulation of points (no segments), for delaunay(),
-// convex_hull() and voronoi().
+// convex_hull() and voronoi(); no triangles when the points are collinear.
 Mesh delaunay_mesh(py::handle vertices) {
   InputArrays a{};
   a.vertices = vertices;
   Input in = read_input(a);
+  if (all_collinear(in.run.pslg.points)) return Mesh{};
   TriangulateOptions topt;
   topt.use_segments = false;
   py::gil_scoped_release nogil;
@@ -219,35 +220,24 @@ py::array_t<std::int32_t> delaunay_triangles(py::handle vertices) {
   return array_2d(t, 3);
 }
 
+// Triangle's orientation and order: the hull cycle from its lowest-leftmost
+// vertex, each edge with the interior on its right.
 py::array_t<std::int32_t> hull_segments(py::handle vertices) {
   const Mesh mesh = delaunay_mesh(vertices);
-  std::vector<std::int32_t> s;
+  std::vector<OutEdge> ccw;
   for (HalfEdgeId e = 0; e < mesh.triangle_vertices().size(); ++e)
     if (mesh.is_real(tri_of(e)) && real_twin(mesh, e) == kNone)
-      s.insert(s.end(), {static_cast<std::int32_t>(mesh.origin(e)), static_cast<std::int32_t>(mesh.dest(e))});
+      ccw.push_back({static_cast<std::int32_t>(mesh.origin(e)), static_cast<std::int32_t>(mesh.dest(e)), 0, true});
+  std::vector<std::int32_t> s;
+  for (const OutEdge& e : triangle_boundary_order(mesh, std::move(ccw))) s.insert(s.end(), {e.a, e.b});
   return array_2d(s, 2);
 }
 
-py::dict voronoi_dict(py::handle vertices) {
+// The `triangle` package's voronoi(): (points, edges, ray_origins, ray_directions).
+py::tuple voronoi_tuple(py::handle vertices) {
   const Mesh mesh = delaunay_mesh(vertices);
-  VoronoiDiagram vd;
-  {
-    py::gil_scoped_release nogil;
-    vd = voronoi_diagram(mesh);
-  }
-  std::vector<double> xy, dir;
-  std::vector<std::int32_t> edges;
-  for (const Point& p : vd.vertices) xy.insert(xy.end(), {p.x, p.y});
-  for (const auto& e : vd.edges) {
-    edges.insert(edges.end(), {static_cast<std::int32_t>(e.a), e.is_ray() ? -1 : static_cast<std::int32_t>(e.b)});
-    dir.insert(dir.end(), {e.is_ray() ? e.direction.x : 0.0, e.is_ray() ? e.direction.y : 0.0});
-  }
-  py::dict d;
-  d["vertices"] = array_2d(xy, 2);
-  d["edges"] = array_2d(edges, 2);
-  d["ray_directions"] = array_2d(dir, 2);
-  return d;
+  py::dict d = voronoi_arrays(mesh);
+  return py::make_tuple(d["vertices"], d["edges"], d["ray_origins"], d["ray_directions"]);
 }
-
 
 }  // namespace deltamesh::python

@@ -75,8 +75,35 @@ std::string trace_path_of(const py::object& trace, const std::optional<std::stri
   return from_switches.value_or("");
 }
 
-py::dict run_plan(Input in, Plan plan, py::object max_area_fn, py::object max_edge_fn,
-                  const std::string& trace_path = "") {
+py::object collinear_result(const Input& in, const Plan& plan, const OutputSwitches& sw, bool want_stats) {
+  const Pslg& g = in.run.pslg;
+  py::dict out;
+  if (!sw.no_node) {
+    std::vector<double> xy;
+    for (const Point& q : g.points) xy.insert(xy.end(), {q.x, q.y});
+    out["vertices"] = array_2d(xy, 2);
+    if (plan.markers) {
+      std::vector<std::int32_t> m(g.points.size(), 0);
+      for (std::size_t i = 0; i < std::min(m.size(), g.point_markers.size()); ++i) m[i] = g.point_markers[i];
+      out["vertex_markers"] = array_2d(m, 1);
+    }
+    if (g.num_point_attributes) out["vertex_attributes"] = array_2d(g.point_attributes, g.num_point_attributes);
+  }
+  const std::string why = "all " + std::to_string(g.points.size()) + " points are collinear: no triangles";
+  if (!plan.quiet) warn("deltamesh: " + why);
+  if (!want_stats) return out;
+  py::dict st;
+  st["input_vertices"] = g.points.size();
+  st["vertices"] = g.points.size();
+  st["triangles"] = 0;
+  st["complete"] = true;
+  st["refined"] = false;
+  st["warnings"] = py::make_tuple(why);
+  return py::make_tuple(out, st);
+}
+
+py::object run_plan(Input in, Plan plan, py::object max_area_fn, py::object max_edge_fn, const OutputSwitches& sw,
+                    bool want_stats, const std::string& trace_path = "") {
   SizeCallback area{std::move(max_area_fn), "max_area_fn", {}, {}};
   SizeCallback edge{std::move(max_edge_fn), "max_edge_fn", {}, {}};
   if (plan.mesh_input() && !in.has_triangles)
@@ -84,9 +111,11 @@ py::dict run_plan(Input in, Plan plan, py::object max_area_fn, py::object max_ed
   if (plan.mesh_input() && plan.refine.input_area_bounds && in.run.triangle_area_bounds.empty())
     throw py::value_error(
         "switches -r with -a and no number read per-triangle bounds: the input needs 'triangle_max_area'");
+  if (!plan.mesh_input() && all_collinear(in.run.pslg.points)) return collinear_result(in, plan, sw, want_stats);
   plan.refine.max_area_at = area.make();
   plan.refine.max_edge_at = edge.make();
-  Pslg seeds;  // holes and regions, written back with 'p'
+  Pslg seeds;  // segments (their order), holes and regions, written back with 'p'
+  seeds.segments = in.run.pslg.segments;
   seeds.holes = in.run.pslg.holes;
   seeds.regions = in.run.pslg.regions;
   std::unique_ptr<TraceFile> trace;
@@ -99,8 +128,7 @@ py::dict run_plan(Input in, Plan plan, py::object max_area_fn, py::object max_ed
   edge.rethrow();
   if (trace) trace->commit();
   raise_check_problems(res);
-  py::dict out = mesh_dict(res, plan, seeds);
-  out["stats"] = stats_dict(res);
+  py::dict out = mesh_dict(res, plan, seeds, sw);
   if (!plan.quiet) {
     for (const std::string& w : res.warnings()) warn("deltamesh: " + w);
     if (!res.complete())
@@ -113,16 +141,22 @@ py::dict run_plan(Input in, Plan plan, py::object max_area_fn, py::object max_ed
       py::print("deltamesh: refine:", res.stats.refine.summary(),
                 py::arg("file") = py::module_::import("sys").attr("stderr"));
   }
+  if (want_stats) return py::make_tuple(out, stats_dict(res));
   return out;
 }
 
 }  // namespace
 
-py::dict triangulate_dict(const py::dict& tri, const std::string& opts, py::object max_area_fn,
-                          py::object max_edge_fn, py::object trace) {
+py::object triangulate_dict(const py::dict& tri, const std::string& opts, py::object max_area_fn,
+                            py::object max_edge_fn, bool stats, py::object trace) {
   const CommandLine cl = parse_switches(opts);
-  return run_plan(read_input(arrays_from_dict(tri)), cl.plan, std::move(max_area_fn), std::move(max_edge_fn),
-                  trace_path_of(trace, cl.trace_path));
+  OutputSwitches sw;
+  sw.no_node = cl.no_node;
+  sw.no_ele = cl.no_ele;
+  sw.no_poly = cl.no_poly;
+  sw.voronoi = cl.voronoi;
+  return run_plan(read_input(arrays_from_dict(tri)), cl.plan, std::move(max_area_fn), std::move(max_edge_fn), sw,
+                  stats, trace_path_of(trace, cl.trace_path));
 }
 
 // adapt(mesh, size, opts): the mesh rebuilt as for 'r' (with 'p' when it has
@@ -177,7 +211,7 @@ py::dict adapt_dict(const py::dict& tri, py::object size, const std::string& opt
   return out;
 }
 
-py::dict triangulate_kw(py::object vertices, py::object segments, py::object holes, py::object regions,
+py::object triangulate_kw(py::object vertices, py::object segments, py::object holes, py::object regions,
                         py::object vertex_markers, py::object vertex_attributes, py::object segment_markers,
                         py::object triangles, py::object triangle_attributes, py::object triangle_max_area,
                         py::object min_angle, py::object max_area, bool regional_area, py::object max_steiner,
@@ -186,7 +220,7 @@ py::dict triangulate_kw(py::object vertices, py::object segments, py::object hol
                         bool ignore_holes, const std::string& fill, const std::string& cdt, bool strict,
                         const std::string& steiner, const std::string& encroachment, const std::string& order,
                         py::object time_limit, bool jettison, bool second_order, bool edges, bool neighbors, bool check,
-                        bool markers, bool quiet, py::object trace) {
+                        bool markers, bool quiet, bool stats, py::object trace) {
   if (py::isinstance<py::dict>(vertices))
     throw py::value_error("vertices: got a dict; for Triangle's form call triangulate(dict, 'switches')");
   Keywords k;
@@ -218,7 +252,8 @@ py::dict triangulate_kw(py::object vertices, py::object segments, py::object hol
   const Plan plan = keyword_plan(k);
   const InputArrays a{vertices, vertex_markers, vertex_attributes,   segments,         segment_markers, holes,
                       regions,  triangles,      triangle_attributes, triangle_max_area};
-  return run_plan(read_input(a), plan, std::move(max_area_fn), std::move(max_edge_fn), trace_path_of(trace, {}));
+  return run_plan(read_input(a), plan, std::move(max_area_fn), std::move(max_edge_fn), {}, stats,
+                  trace_path_of(trace, {}));
 }
 
 }  // namespace deltamesh::python

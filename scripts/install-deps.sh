@@ -4,7 +4,8 @@
 set -euo pipefail
 want=(g++ make cmake libgtest-dev libgmock-dev libbenchmark-dev libgmp-dev libxml2-utils gmsh python3-meshio librsvg2-bin
       nlohmann-json3-dev  # JSON statistics (--stats=json)
-      pybind11-dev python3-dev python3-numpy)  # the last three: Python bindings (python/)
+      pybind11-dev python3-dev python3-numpy  # Python bindings (python/)
+      python3-setuptools python3-wheel python3-build python3-venv python3-pip python3-matplotlib)  # the pip package and its test
 for group in "$@"; do
   case "$group" in
     core) ;;
