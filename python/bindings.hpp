@@ -115,7 +115,7 @@ Plan keyword_plan(const Keywords& k);
 // Entry points (triangulate.cpp, tools.cpp)
 
 py::dict triangulate_dict(const py::dict& tri, const std::string& opts, py::object max_area_fn,
-                          py::object max_edge_fn);
+                          py::object max_edge_fn, py::object threads);
 py::dict triangulate_kw(py::object vertices, py::object segments, py::object holes, py::object regions,
                         py::object vertex_markers, py::object vertex_attributes, py::object segment_markers,
                         py::object triangles, py::object triangle_attributes, py::object triangle_max_area,
@@ -125,7 +125,9 @@ py::dict triangulate_kw(py::object vertices, py::object segments, py::object hol
                         bool ignore_holes, const std::string& fill, const std::string& cdt, bool strict,
                         const std::string& steiner, const std::string& encroachment, const std::string& order,
                         py::object time_limit, bool jettison, bool second_order, bool edges, bool neighbors, bool check,
-                        bool markers, bool quiet);
+                        bool markers, bool quiet, py::object threads);
+// threads= of both forms: None leaves the plan's (the switches' -t, else 0).
+void apply_threads(Plan& plan, const py::object& threads);
 py::dict adapt_dict(const py::dict& tri, py::object size, const std::string& opts, int smooth);
 py::dict check_dict(const py::dict& tri, bool delaunay, bool convex_hull, bool segments);
 py::dict validate_dict(const py::dict& tri, bool delaunay, bool convex_hull, bool segments);

@@ -101,9 +101,19 @@ py::dict run_plan(Input in, Plan plan, py::object max_area_fn, py::object max_ed
 
 }  // namespace
 
+void apply_threads(Plan& plan, const py::object& threads) {
+  if (threads.is_none()) return;
+  if (!py::isinstance<py::int_>(threads) || py::isinstance<py::bool_>(threads))
+    throw py::type_error("threads: an int (0: every hardware thread, 1: sequential)");
+  const long long n = threads.cast<long long>();
+  if (n < 0 || n > 4096) throw py::value_error("threads: " + std::to_string(n) + ": a thread count from 0 to 4096");
+  plan.threads = static_cast<unsigned>(n);
+}
+
 py::dict triangulate_dict(const py::dict& tri, const std::string& opts, py::object max_area_fn,
-                          py::object max_edge_fn) {
-  const CommandLine cl = parse_switches(opts);
+                          py::object max_edge_fn, py::object threads) {
+  CommandLine cl = parse_switches(opts);
+  apply_threads(cl.plan, threads);
   return run_plan(read_input(arrays_from_dict(tri)), cl.plan, std::move(max_area_fn), std::move(max_edge_fn));
 }
 
@@ -168,7 +178,7 @@ py::dict triangulate_kw(py::object vertices, py::object segments, py::object hol
                         bool ignore_holes, const std::string& fill, const std::string& cdt, bool strict,
                         const std::string& steiner, const std::string& encroachment, const std::string& order,
                         py::object time_limit, bool jettison, bool second_order, bool edges, bool neighbors, bool check,
-                        bool markers, bool quiet) {
+                        bool markers, bool quiet, py::object threads) {
   if (py::isinstance<py::dict>(vertices))
     throw py::value_error("vertices: got a dict; for Triangle's form call triangulate(dict, 'switches')");
   Keywords k;
@@ -197,7 +207,8 @@ py::dict triangulate_kw(py::object vertices, py::object segments, py::object hol
   k.check = check;
   k.markers = markers;
   k.quiet = quiet;
-  const Plan plan = keyword_plan(k);
+  Plan plan = keyword_plan(k);
+  apply_threads(plan, threads);
   const InputArrays a{vertices, vertex_markers, vertex_attributes,   segments,         segment_markers, holes,
                       regions,  triangles,      triangle_attributes, triangle_max_area};
   return run_plan(read_input(a), plan, std::move(max_area_fn), std::move(max_edge_fn));

@@ -13,6 +13,12 @@ struct DelaunayOptions {
   // Keep ghost triangles (a closed triangulation on the vertex at infinity),
   // for algorithms that go on inserting; otherwise the result is compacted.
   bool keep_ghosts = false;
+  // Threads: 0 = every hardware thread, 1 = the sequential build. Without
+  // ghosts and with at least 50000 points per thread, the points are cut
+  // into that many vertical slabs triangulated concurrently and merged (the
+  // same triangles as the sequential build when the triangulation is
+  // unique, numbered slab by slab: the same output for the same count).
+  unsigned threads = 0;
 };
 
 struct DelaunayStats {

@@ -46,6 +46,9 @@ struct TriangulateOptions {
   // then refinement's "refine" in Steiner points unless refine->progress is
   // set); see progress.hpp. Empty: no reports.
   ProgressCallback progress;
+  // Threads for the Delaunay triangulation of a point set (see
+  // DelaunayOptions::threads): 0 = every hardware thread, 1 = sequential.
+  unsigned threads = 0;
 };
 
 struct TriangulateStats {

@@ -183,6 +183,7 @@ Mesh triangulate(const Pslg& pslg, const TriangulateOptions& options, Triangulat
   if (!options.use_segments) {
     DelaunayOptions dopt;
     dopt.keep_ghosts = options.domain.keep_convex_hull;  // the hull edges are constrained below
+    dopt.threads = options.threads;
     DelaunayStats ds;
     {
       ProgressReporter rep(options.progress, "insert points", "points", pslg.points.size());
