@@ -19,7 +19,7 @@
 
 #include "core/parallel.hpp"
 #include "deltamesh/errors.hpp"
-#include "deltamesh/insert_segments.hpp"
+#include "deltamesh/predicates.hpp"
 
 namespace deltamesh::detail {
 
@@ -121,7 +121,7 @@ void cut_part(const Mesh& whole, const std::vector<std::uint32_t>& slab, const s
 // The parts back in one mesh: the whole mesh's vertices keep their ids, the
 // parts' new vertices follow part by part; boundary half-edges are paired by
 // their vertices, and the temporary segments become ordinary edges again.
-Mesh stitch(const Mesh& whole, std::vector<Part>& parts, unsigned threads) {
+Mesh stitch(const Mesh& whole, std::vector<Part>& parts, unsigned threads, std::vector<HalfEdgeId>& cut_edges) {
   const std::size_t n0 = whole.num_vertices(), na = whole.num_vertex_attributes(),
                     ta = whole.num_triangle_attributes();
   std::vector<std::size_t> vbase(parts.size() + 1, n0), tbase(parts.size() + 1, 0);
@@ -214,6 +214,7 @@ Mesh stitch(const Mesh& whole, std::vector<Part>& parts, unsigned threads) {
       if (cuts.count(directed_key(a, b)) || cuts.count(directed_key(b, a))) {
         fl[h] &= static_cast<std::uint8_t>(~kConstrained);
         mk[h] = 0;
+        cut_edges.push_back(h);
       }
     }
   for (Part& p : parts) p.mesh = Mesh{};
@@ -221,6 +222,24 @@ Mesh stitch(const Mesh& whole, std::vector<Part>& parts, unsigned threads) {
     for (TriId t = 0; t < nt; ++t) out.set_triangle_area_bound(t, area_bounds[t]);
   out.compact();
   return out;
+}
+
+// Lawson flips from the cuts: each part is a constrained Delaunay
+// triangulation, so only an edge whose two triangles come from different
+// parts can fail the empty-circle test, and then the edges a flip creates.
+void flip_cuts(Mesh& m, std::vector<HalfEdgeId> stack) {
+  while (!stack.empty()) {
+    const HalfEdgeId e = stack.back();
+    stack.pop_back();
+    const HalfEdgeId f = m.twin(e);
+    if (f == kNone || m.is_constrained(e)) continue;
+    const Point &a = m.point(m.origin(e)), &b = m.point(m.dest(e));
+    const Point& c = m.point(m.origin(prev_edge(e)));
+    const Point& d = m.point(m.origin(prev_edge(f)));
+    if (incircle(a, b, c, d) <= 0) continue;
+    const HalfEdgeId r = m.flip(e), s = m.twin(r);
+    for (HalfEdgeId g : {next_edge(r), prev_edge(r), next_edge(s), prev_edge(s)}) stack.push_back(g);
+  }
 }
 
 void add_counts(RefineStats& to, const RefineStats& from) {
@@ -255,6 +274,8 @@ std::optional<RefineStats> refine_in_parts(Mesh& mesh, const RefineOptions& opti
   one.progress = {};
   RefineOptions coarse = one;
   coarse.max_area = options.max_area * kCoarseAreaFactor;
+  // With the asked rules: a coarse stage at 20 degrees and off-centres
+  // (quicker) left 3-4% more triangles at q33 next to fine boundaries.
   RefineStats total = refine(mesh, coarse);
   const bool cut = total.complete;  // else the coarse stage met a limit: finish sequentially
 
@@ -287,8 +308,9 @@ std::optional<RefineStats> refine_in_parts(Mesh& mesh, const RefineOptions& opti
       if (pieces[j].mesh.num_triangles() > 0) pieces[j].stats = refine(pieces[j].mesh, one);
     });
     for (const Part& p : pieces) add_counts(total, p.stats);
-    mesh = stitch(mesh, pieces, threads);
-    make_constrained_delaunay(mesh);
+    std::vector<HalfEdgeId> cut_edges;
+    mesh = stitch(mesh, pieces, threads, cut_edges);
+    flip_cuts(mesh, std::move(cut_edges));
   }
   one.progress = options.progress;
   RefineStats last = refine(mesh, one);

@@ -157,7 +157,19 @@ void finish_vertex_markers(Mesh& mesh) {
       }
     }
   }
-  // ... and a vertex still at 0 on the boundary gets 1.
+  // ... and a vertex still at 0 on the boundary gets 1. A compacted mesh
+  // has only real triangles: its boundary is where twins are kNone (one
+  // pass over the twins, a few instructions per half-edge).
+  if (mesh.compacted()) {
+    const std::span<const VertexId> tv = mesh.triangle_vertices();
+    const std::size_t n = mesh.num_vertices();
+    for (HalfEdgeId e = 0; e < tv.size(); ++e) {
+      if (mesh.twin(e) != kNone || tv[e] >= n || tv[next_edge(e)] >= n) continue;  // (a removed slot)
+      if (markers[tv[e]] == 0) markers[tv[e]] = 1;
+      if (markers[tv[next_edge(e)]] == 0) markers[tv[next_edge(e)]] = 1;
+    }
+    return;
+  }
   for (TriId t = 0; t < slots; ++t) {
     if (!mesh.is_real(t)) continue;
     for (HalfEdgeId e = 3 * t; e < 3 * t + 3; ++e) {
