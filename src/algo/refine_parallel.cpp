@@ -19,7 +19,7 @@
 
 #include "core/parallel.hpp"
 #include "deltamesh/errors.hpp"
-#include "deltamesh/predicates.hpp"
+#include "mesh/legalize.hpp"
 
 namespace deltamesh::detail {
 
@@ -224,24 +224,6 @@ Mesh stitch(const Mesh& whole, std::vector<Part>& parts, unsigned threads, std::
   return out;
 }
 
-// Lawson flips from the cuts: each part is a constrained Delaunay
-// triangulation, so only an edge whose two triangles come from different
-// parts can fail the empty-circle test, and then the edges a flip creates.
-void flip_cuts(Mesh& m, std::vector<HalfEdgeId> stack) {
-  while (!stack.empty()) {
-    const HalfEdgeId e = stack.back();
-    stack.pop_back();
-    const HalfEdgeId f = m.twin(e);
-    if (f == kNone || m.is_constrained(e)) continue;
-    const Point &a = m.point(m.origin(e)), &b = m.point(m.dest(e));
-    const Point& c = m.point(m.origin(prev_edge(e)));
-    const Point& d = m.point(m.origin(prev_edge(f)));
-    if (incircle(a, b, c, d) <= 0) continue;
-    const HalfEdgeId r = m.flip(e), s = m.twin(r);
-    for (HalfEdgeId g : {next_edge(r), prev_edge(r), next_edge(s), prev_edge(s)}) stack.push_back(g);
-  }
-}
-
 void add_counts(RefineStats& to, const RefineStats& from) {
   to.segment_splits += from.segment_splits;
   to.interior_points += from.interior_points;
@@ -310,7 +292,11 @@ std::optional<RefineStats> refine_in_parts(Mesh& mesh, const RefineOptions& opti
     for (const Part& p : pieces) add_counts(total, p.stats);
     std::vector<HalfEdgeId> cut_edges;
     mesh = stitch(mesh, pieces, threads, cut_edges);
-    flip_cuts(mesh, std::move(cut_edges));
+    // Each part is a constrained Delaunay triangulation: only edges whose
+    // triangles come from different parts (the cuts) can fail the
+    // empty-circle test, and then the edges their flips make.
+    MeshTopology topo(mesh);
+    constrained_lawson(topo, cut_edges);
   }
   one.progress = options.progress;
   RefineStats last = refine(mesh, one);
