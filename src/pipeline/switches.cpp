@@ -104,7 +104,7 @@ class SwitchString {
         default:
           if (std::isdigit(static_cast<unsigned char>(c)) || c == '.')
             throw UsageError{std::string("number '") + c + "' in '-" + std::string(s_) +
-                             "' does not follow a switch that takes one (q, a, S)"};
+                             "' does not follow a switch that takes one (q, a, S, t)"};
           throw UsageError{std::string("unknown switch -") + c + " in '-" + std::string(s_) +
                            "' (see deltamesh --help)"};
       }
