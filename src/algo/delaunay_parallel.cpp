@@ -26,6 +26,7 @@
 #include <vector>
 
 #include "core/parallel.hpp"
+#include "mesh/editor.hpp"
 #include "deltamesh/cdt.hpp"
 #include "deltamesh/errors.hpp"
 #include "deltamesh/pslg.hpp"
@@ -234,10 +235,10 @@ std::optional<Mesh> parallel_delaunay(std::span<const Point> points, unsigned pa
   if (total >= kNone / 3) throw InputError("too many triangles: at most 1431655764 are supported");
 
   Mesh out;
-  out.points_mut().assign(points.begin(), points.end());
-  out.vert_edge_mut().assign(n, kNone);
-  std::vector<VertexId>& tv = out.tri_v_mut();
-  std::vector<HalfEdgeId>& tw = out.twin_mut();
+  MeshEditor(out).points().assign(points.begin(), points.end());
+  MeshEditor(out).out_edges().assign(n, kNone);
+  std::vector<VertexId>& tv = MeshEditor(out).triangle_vertices();
+  std::vector<HalfEdgeId>& tw = MeshEditor(out).twins();
   tv.resize(3 * total);
   tw.resize(3 * total);
   run_tasks(slabs.size(), threads, [&](std::size_t j) {

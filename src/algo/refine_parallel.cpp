@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "core/parallel.hpp"
+#include "mesh/editor.hpp"
 #include "deltamesh/errors.hpp"
 #include "mesh/legalize.hpp"
 
@@ -64,8 +65,8 @@ void cut_part(const Mesh& whole, const std::vector<std::uint32_t>& slab, const s
       }
   Mesh& m = part.mesh;
   const std::size_t nv = part.global.size(), na = whole.num_vertex_attributes();
-  m.points_mut().resize(nv);
-  for (std::size_t v = 0; v < nv; ++v) m.points_mut()[v] = whole.point(part.global[v]);
+  MeshEditor(m).points().resize(nv);
+  for (std::size_t v = 0; v < nv; ++v) MeshEditor(m).points()[v] = whole.point(part.global[v]);
   if (!whole.vertex_markers().empty()) {
     m.vertex_markers().resize(nv);
     for (std::size_t v = 0; v < nv; ++v) m.vertex_markers()[v] = whole.vertex_markers()[part.global[v]];
@@ -75,13 +76,13 @@ void cut_part(const Mesh& whole, const std::vector<std::uint32_t>& slab, const s
   for (std::size_t v = 0; v < nv; ++v)
     for (std::size_t k = 0; k < na; ++k)
       m.vertex_attributes()[v * na + k] = whole.vertex_attributes()[std::size_t{part.global[v]} * na + k];
-  m.vert_edge_mut().assign(nv, kNone);
+  MeshEditor(m).out_edges().assign(nv, kNone);
 
   const std::size_t nt = tris.size(), ta = whole.num_triangle_attributes();
-  std::vector<VertexId>& tv = m.tri_v_mut();
-  std::vector<HalfEdgeId>& tw = m.twin_mut();
-  std::vector<std::uint8_t>& fl = m.edge_flags_mut();
-  std::vector<int>& mk = m.edge_markers_mut();
+  std::vector<VertexId>& tv = MeshEditor(m).triangle_vertices();
+  std::vector<HalfEdgeId>& tw = MeshEditor(m).twins();
+  std::vector<std::uint8_t>& fl = MeshEditor(m).edge_flags();
+  std::vector<int>& mk = MeshEditor(m).edge_markers();
   tv.resize(3 * nt);
   tw.resize(3 * nt);
   fl.assign(3 * nt, 0);
@@ -135,9 +136,9 @@ Mesh stitch(const Mesh& whole, std::vector<Part>& parts, unsigned threads, std::
   const bool markers = !whole.vertex_markers().empty() ||
                        std::any_of(parts.begin(), parts.end(), [](const Part& p) { return !p.mesh.vertex_markers().empty(); });
   Mesh out;
-  out.points_mut().assign(whole.points().begin(), whole.points().end());
-  out.points_mut().resize(nv);
-  out.vert_edge_mut().assign(nv, kNone);
+  MeshEditor(out).points().assign(whole.points().begin(), whole.points().end());
+  MeshEditor(out).points().resize(nv);
+  MeshEditor(out).out_edges().assign(nv, kNone);
   if (markers) {
     out.vertex_markers() = whole.vertex_markers();
     out.vertex_markers().resize(nv, 0);
@@ -147,17 +148,17 @@ Mesh stitch(const Mesh& whole, std::vector<Part>& parts, unsigned threads, std::
   out.vertex_attributes().resize(nv * na, 0.0);
   out.set_num_triangle_attributes(ta);
   out.triangle_attributes().resize(nt * ta);
-  std::vector<VertexId>& tv = out.tri_v_mut();
-  std::vector<HalfEdgeId>& tw = out.twin_mut();
-  std::vector<std::uint8_t>& fl = out.edge_flags_mut();
-  std::vector<int>& mk = out.edge_markers_mut();
+  std::vector<VertexId>& tv = MeshEditor(out).triangle_vertices();
+  std::vector<HalfEdgeId>& tw = MeshEditor(out).twins();
+  std::vector<std::uint8_t>& fl = MeshEditor(out).edge_flags();
+  std::vector<int>& mk = MeshEditor(out).edge_markers();
   // Room for the last refinement, which adds a few percent.
   const std::size_t room = 3 * (nt + nt / 16);
   tv.reserve(room);
   tw.reserve(room);
   fl.reserve(room);
   mk.reserve(room);
-  out.points_mut().reserve(nv + nv / 16);
+  MeshEditor(out).points().reserve(nv + nv / 16);
   tv.resize(3 * nt);
   tw.resize(3 * nt);
   fl.assign(3 * nt, 0);
@@ -172,7 +173,7 @@ Mesh stitch(const Mesh& whole, std::vector<Part>& parts, unsigned threads, std::
     };
     for (VertexId v = static_cast<VertexId>(global.size()); v < m.num_vertices(); ++v) {
       const VertexId g = id(v);
-      out.points_mut()[g] = m.point(v);
+      MeshEditor(out).points()[g] = m.point(v);
       if (markers && v < m.vertex_markers().size()) out.vertex_markers()[g] = m.vertex_markers()[v];
       if (std::size_t{v} * na + na <= m.vertex_attributes().size())
         for (std::size_t k = 0; k < na; ++k)
