@@ -139,7 +139,7 @@ Plan keyword_plan(const Keywords& k);
 
 // Both return the result dict, or (dict, stats) with stats=True.
 py::object triangulate_dict(const py::dict& tri, const std::string& opts, py::object max_area_fn,
-                            py::object max_edge_fn, bool stats, py::object trace);
+                            py::object max_edge_fn, bool stats, py::object trace, py::object threads);
 py::object triangulate_kw(py::object vertices, py::object segments, py::object holes, py::object regions,
                         py::object vertex_markers, py::object vertex_attributes, py::object segment_markers,
                         py::object triangles, py::object triangle_attributes, py::object triangle_max_area,
@@ -149,7 +149,9 @@ py::object triangulate_kw(py::object vertices, py::object segments, py::object h
                         bool ignore_holes, const std::string& fill, const std::string& cdt, bool strict,
                         const std::string& steiner, const std::string& encroachment, const std::string& order,
                         py::object time_limit, bool jettison, bool second_order, bool edges, bool neighbors, bool check,
-                        bool markers, bool quiet, bool stats, py::object trace);
+                        bool markers, bool quiet, bool stats, py::object trace, py::object threads);
+// threads= of both forms: None leaves the plan's (the switches' -t, else 0).
+void apply_threads(Plan& plan, const py::object& threads);
 py::dict adapt_dict(const py::dict& tri, py::object size, const std::string& opts, int smooth);
 py::dict check_dict(const py::dict& tri, bool delaunay, bool convex_hull, bool segments);
 py::dict validate_dict(const py::dict& tri, bool delaunay, bool convex_hull, bool segments);

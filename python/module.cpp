@@ -83,6 +83,7 @@ handle Triangle's files and the other formats. See docs/python.md.)";
 
   m.def("triangulate", &triangulate_dict, py::arg("tri"), py::arg("opts") = "", py::kw_only(),
         py::arg("max_area_fn") = py::none(), py::arg("max_edge_fn") = py::none(), py::arg("stats") = false, py::arg("trace") = py::none(),
+        py::arg("threads") = py::none(),
         R"(Triangle's form: triangulate(tri: dict, opts: str = '') -> dict.
 
 tri holds numpy arrays (or lists): vertices (n, 2) float, and optionally
@@ -93,7 +94,9 @@ triangle_max_area. opts is Triangle's switch string, e.g. 'pq30a0.1'
 (p r q a c A O D Y S j e n o2 C Q V B z, and the output switches v N E P;
 i F l X s u g I are accepted with a warning that they change nothing;
 long options such as '--cdt=lawson' may follow after a space). Unknown
-switches raise ValueError.
+switches raise ValueError. threads=N (or 't4' in opts):
+threads for Delaunay and refinement, 0 (default) every hardware thread, 1
+the sequential code.
 
 Returns the `triangle` package's dict: vertices (N, 2) float64,
 vertex_markers (N, 1) int32, triangles (M, 3) int32 (M, 6 with o2),
@@ -118,7 +121,7 @@ details, warnings...).)");
         py::arg("encroachment") = "lens", py::arg("order") = "shortest", py::arg("time_limit") = py::none(),
         py::arg("jettison") = false, py::arg("second_order") = false, py::arg("edges") = false,
         py::arg("neighbors") = false, py::arg("check") = false, py::arg("markers") = true, py::arg("quiet") = false,
-        py::arg("stats") = false, py::arg("trace") = py::none(),
+        py::arg("stats") = false, py::arg("trace") = py::none(), py::arg("threads") = py::none(),
         R"(Keyword form: triangulate(vertices, segments=None, holes=None, regions=None, *, ...) -> dict.
 
 Same result as Triangle's form. Segments (or triangles) switch on 'p'
@@ -128,7 +131,8 @@ max_steiner 'S', conforming_delaunay 'D', segment_splitting='interior'|'none'
 'Y'|'YY', convex_hull 'c', regional_attributes 'A', ignore_holes 'O',
 jettison 'j', second_order 'o2', edges 'e', neighbors 'n', check 'C',
 markers=False 'B', quiet 'Q'; triangles=... is 'r'. fill, cdt, steiner,
-encroachment, order, time_limit are the command line's long options.
+encroachment, order, time_limit are the command line's long options;
+threads=N is -tN (0, the default: every hardware thread; 1: sequential).
 max_area_fn(x, y) / max_edge_fn(x, y): size functions evaluated at triangle
 centroids (<= 0: no bound there); they refine like max_area.
 stats=True returns (dict, stats). trace=PATH writes every step of the run as

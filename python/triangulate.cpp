@@ -147,9 +147,19 @@ py::object run_plan(Input in, Plan plan, py::object max_area_fn, py::object max_
 
 }  // namespace
 
+void apply_threads(Plan& plan, const py::object& threads) {
+  if (threads.is_none()) return;
+  if (!py::isinstance<py::int_>(threads) || py::isinstance<py::bool_>(threads))
+    throw py::type_error("threads: an int (0: every hardware thread, 1: sequential)");
+  const long long n = threads.cast<long long>();
+  if (n < 0 || n > 4096) throw py::value_error("threads: " + std::to_string(n) + ": a thread count from 0 to 4096");
+  plan.threads = static_cast<unsigned>(n);
+}
+
 py::object triangulate_dict(const py::dict& tri, const std::string& opts, py::object max_area_fn,
-                            py::object max_edge_fn, bool stats, py::object trace) {
-  const CommandLine cl = parse_switches(opts);
+                            py::object max_edge_fn, bool stats, py::object trace, py::object threads) {
+  CommandLine cl = parse_switches(opts);
+  apply_threads(cl.plan, threads);
   OutputSwitches sw;
   sw.no_node = cl.no_node;
   sw.no_ele = cl.no_ele;
@@ -220,7 +230,7 @@ py::object triangulate_kw(py::object vertices, py::object segments, py::object h
                         bool ignore_holes, const std::string& fill, const std::string& cdt, bool strict,
                         const std::string& steiner, const std::string& encroachment, const std::string& order,
                         py::object time_limit, bool jettison, bool second_order, bool edges, bool neighbors, bool check,
-                        bool markers, bool quiet, bool stats, py::object trace) {
+                        bool markers, bool quiet, bool stats, py::object trace, py::object threads) {
   if (py::isinstance<py::dict>(vertices))
     throw py::value_error("vertices: got a dict; for Triangle's form call triangulate(dict, 'switches')");
   Keywords k;
@@ -249,7 +259,8 @@ py::object triangulate_kw(py::object vertices, py::object segments, py::object h
   k.check = check;
   k.markers = markers;
   k.quiet = quiet;
-  const Plan plan = keyword_plan(k);
+  Plan plan = keyword_plan(k);
+  apply_threads(plan, threads);
   const InputArrays a{vertices, vertex_markers, vertex_attributes,   segments,         segment_markers, holes,
                       regions,  triangles,      triangle_attributes, triangle_max_area};
   return run_plan(read_input(a), plan, std::move(max_area_fn), std::move(max_edge_fn), {}, stats,

@@ -13,11 +13,13 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <thread>
 #include <vector>
 
+#include "algo/delaunay_parallel.hpp"
 #include "deltamesh-gen/generators.hpp"
 #include "deltamesh/delaunay.hpp"
 #include "deltamesh/errors.hpp"
@@ -234,4 +236,24 @@ TEST_F(Threads, ConcurrentWritersOfOneFileLeaveAWholeFile) {
   for (int t = 0; t < kThreads; ++t) EXPECT_EQ(errors[t], "") << "thread " << t;
   EXPECT_EQ(dm::test::slurp(target), expected);
   EXPECT_EQ(listing(), (std::vector<std::string>{"same.node"}));
+}
+
+// The library's own threads (-t): the parallel Delaunay triangulation run
+// again and again with more slabs than threads and more threads than
+// cores, each result the same as the first and valid. Under ThreadSanitizer
+// this is the stress test of the slab tasks and the merge.
+TEST_F(Threads, ParallelDelaunayRepeatedGivesOneResult) {
+  const auto pts = dm::gen::uniform_points(scaled(20000), 17);
+  const int runs = dm::test::quick_tests() ? 6 : 20;
+  for (unsigned threads : {2u, 4u}) {
+    std::optional<dm::Mesh> first = dm::detail::parallel_delaunay(pts, 2 * threads, threads, nullptr);
+    ASSERT_TRUE(first.has_value());
+    const Outcome expected = outcome_of(*first, true);
+    EXPECT_TRUE(expected.valid);
+    for (int r = 0; r < runs; ++r) {
+      std::optional<dm::Mesh> again = dm::detail::parallel_delaunay(pts, 2 * threads, threads, nullptr);
+      ASSERT_TRUE(again.has_value());
+      EXPECT_TRUE(outcome_of(*again, true) == expected) << threads << " threads, run " << r;
+    }
+  }
 }

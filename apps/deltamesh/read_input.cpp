@@ -37,11 +37,11 @@ RunInput read_mesh(Session& s, const std::string& in) {
   s.reading(node_path);
   const auto t = Clock::now();
   RunInput r;
-  r.pslg = read_node(node_path);
+  r.pslg = read_node(node_path, s.plan.threads);
   s.first_index = r.pslg.first_index;
   if (poly) {
     s.reading(poly_path);
-    Pslg p = read_poly(poly_path);
+    Pslg p = read_poly(poly_path, s.plan.threads);
     if (p.points.size() != r.pslg.points.size())
       throw InputError(poly_path + " lists " + std::to_string(p.points.size()) + " vertices but " + node_path +
                        " has " + std::to_string(r.pslg.points.size()));
@@ -141,7 +141,7 @@ RunInput read_input(Session& s) {
     gopt.area_property = s.cl.area_property;
     r.pslg = read_geojson(in_path, gopt, &s.geojson_info);
   } else {
-    r.pslg = poly ? read_poly(in_path) : read_node(in_path);
+    r.pslg = poly ? read_poly(in_path, s.plan.threads) : read_node(in_path, s.plan.threads);
   }
   add_phase(s, "read", t);
   s.first_index = r.pslg.first_index;

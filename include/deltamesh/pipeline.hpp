@@ -82,6 +82,9 @@ struct Plan {
   bool check = false;     // -C: the validator on the result (RunResult::check)
   bool jettison = false;  // -j: vertices in no triangle dropped
   int order = 1;          // 2 (-o2): a node at the midpoint of every edge (RunResult::midside)
+  // -tN / --threads=N: threads for Delaunay and refinement; 0 = every
+  // hardware thread, 1 = the sequential code (docs/scaling.md).
+  unsigned threads = 0;
   // How a front end writes the result (nothing here changes the mesh).
   bool zero_based = false;  // -z
   bool markers = true;      // -B: false

@@ -142,6 +142,12 @@ struct RefineOptions {
   std::size_t max_steiner = kAutomaticBudget;
   // Wall-clock limit in seconds (<= 0: none).
   double time_limit_seconds = 0.0;
+  // Threads: 0 = every hardware thread, 1 = the sequential refinement. With
+  // a uniform area bound (max_area) that asks for at least 150000
+  // triangles per thread, and no size callback, budget, time limit or -D,
+  // the mesh is refined in parts (docs/scaling.md): the same bounds are
+  // met; the mesh depends on the thread count, not on the run.
+  unsigned threads = 0;
   // Progress: phase "refine", counting Steiner points (total unknown);
   // see progress.hpp. Empty: no reports.
   ProgressCallback progress;

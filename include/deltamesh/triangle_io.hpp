@@ -11,11 +11,14 @@
 
 namespace deltamesh {
 
-// Points (with attributes and markers) of a .node file.
-Pslg read_node(const std::string& path);
+// Points (with attributes and markers) of a .node file. `threads`: 0 =
+// every hardware thread, 1 = one; large vertex lists of the plain shape
+// "<id> <x> <y> [<marker>]" are parsed in pieces concurrently (same result
+// and same error messages either way).
+Pslg read_node(const std::string& path, unsigned threads = 0);
 // A .poly file; when its vertex count is 0 the vertices come from the .node
 // file of the same base name.
-Pslg read_poly(const std::string& path);
+Pslg read_poly(const std::string& path, unsigned threads = 0);
 
 // Triangles of an .ele file (3 or 6 nodes per triangle, first three kept),
 // re-based to 0; attributes kept per triangle.

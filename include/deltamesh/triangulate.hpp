@@ -49,6 +49,9 @@ struct TriangulateOptions {
   // Every step of every phase reported to this observer (trace.hpp); it
   // stays attached to the result (Mesh::trace). Null: none.
   TraceObserver* trace = nullptr;
+  // Threads for the Delaunay triangulation of a point set (see
+  // DelaunayOptions::threads): 0 = every hardware thread, 1 = sequential.
+  unsigned threads = 0;
 };
 
 struct TriangulateStats {

@@ -119,6 +119,24 @@ class Shapes(unittest.TestCase):
         self.assertEqual(len(mesh["triangles"]), 2 * len(pts) - 2 - h)
         np.testing.assert_array_equal(mesh["vertices"], pts)  # input vertices keep their ids
 
+    def test_threads_give_the_same_triangles_and_bad_counts_raise(self):
+        # 120000 points: two slabs with threads=2 (50000 points per thread at least).
+        rng = np.random.default_rng(11)
+        pts = rng.random((120000, 2))
+        one = quiet_triangulate({"vertices": pts}, "", threads=1)
+        two = quiet_triangulate({"vertices": pts}, "", threads=2)
+        deltamesh.validate(two, convex_hull=True)
+        canon = lambda t: sorted(map(tuple, np.sort(t, axis=1).tolist()))
+        self.assertEqual(canon(one["triangles"]), canon(two["triangles"]))
+        again = quiet_triangulate({"vertices": pts}, "t2")
+        np.testing.assert_array_equal(again["triangles"], two["triangles"])
+        kw = deltamesh.triangulate(pts[:100], threads=3, quiet=True)
+        deltamesh.validate(kw, convex_hull=True)
+        with self.assertRaises(ValueError):
+            deltamesh.triangulate({"vertices": pts[:10]}, "", threads=-1)
+        with self.assertRaises(TypeError):
+            deltamesh.triangulate({"vertices": pts[:10]}, "", threads="2")
+
     def test_neighbors_are_symmetric_and_edges_match_triangles(self):
         mesh = quiet_triangulate(square_with_hole(), "pq30a0.02en")
         deltamesh.validate(mesh)

@@ -4,11 +4,14 @@
 
 #include <algorithm>
 #include <chrono>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "algo/delaunay_parallel.hpp"
 #include "algo/insertion.hpp"
+#include "core/parallel.hpp"
 #include "core/spatial_sort.hpp"
 #include "deltamesh/errors.hpp"
 #include "deltamesh/predicates.hpp"
@@ -127,6 +130,12 @@ Mesh delaunay(std::span<const Point> points, const DelaunayOptions& options, Del
   check_coordinates(points);
   const std::size_t n = points.size();
   if (n >= kNone - 2) throw InputError("too many points: at most 4294967292 are supported");
+  if (!options.keep_ghosts && !options.trace) {  // a traced run is the sequential one, step by step
+    const unsigned threads = detail::resolve_threads(options.threads);
+    const auto parts = static_cast<unsigned>(std::min<std::size_t>(threads, n / detail::kMinPointsPerPart));
+    if (parts >= 2)
+      if (std::optional<Mesh> m = detail::parallel_delaunay(points, parts, threads, stats)) return std::move(*m);
+  }
   auto t0 = Clock::now();
   // Build on a copy in insertion order, so the walk touches nearby memory.
   Mesh mesh;

@@ -151,7 +151,19 @@ void finish_vertex_markers(Mesh& mesh) {
       }
     }
   }
-  // ... and a vertex still at 0 on the boundary gets 1.
+  // ... and a vertex still at 0 on the boundary gets 1. A compacted mesh
+  // has only real triangles: its boundary is where twins are kNone (one
+  // pass over the twins, a few instructions per half-edge).
+  if (mesh.compacted()) {
+    const std::span<const VertexId> tv = mesh.triangle_vertices();
+    const std::size_t n = mesh.num_vertices();
+    for (HalfEdgeId e = 0; e < tv.size(); ++e) {
+      if (mesh.twin(e) != kNone || tv[e] >= n || tv[next_edge(e)] >= n) continue;  // (a removed slot)
+      if (markers[tv[e]] == 0) markers[tv[e]] = 1;
+      if (markers[tv[next_edge(e)]] == 0) markers[tv[next_edge(e)]] = 1;
+    }
+    return;
+  }
   for (TriId t : mesh.triangles()) {
     for (HalfEdgeId e = 3 * t; e < 3 * t + 3; ++e) {
       if (real_twin(mesh, e) != kNone) continue;
@@ -177,6 +189,7 @@ Mesh triangulate(const Pslg& pslg, const TriangulateOptions& options, Triangulat
     DelaunayOptions dopt;
     dopt.keep_ghosts = options.domain.keep_convex_hull;  // the hull edges are constrained below
     dopt.trace = options.trace;
+    dopt.threads = options.threads;
     DelaunayStats ds;
     {
       ProgressReporter rep(options.progress, "insert points", "points", pslg.points.size());

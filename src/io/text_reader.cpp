@@ -6,6 +6,7 @@
 
 #include <sys/mman.h>
 
+#include <algorithm>
 #include <bit>
 #include <cerrno>
 #include <charconv>
@@ -13,6 +14,8 @@
 #include <cstring>
 #include <limits>
 #include <system_error>
+
+#include "core/parallel.hpp"
 
 namespace deltamesh::io {
 
@@ -402,6 +405,87 @@ bool TextReader::try_point_line(long long expected_id, bool with_marker, double&
   ++next_line_;
   tokens_.clear();
   pos_ = p < stop ? static_cast<std::size_t>(p - text_.data()) + 1 : text_.size();
+  return true;
+}
+
+bool TextReader::try_point_lines(long long first_id, std::size_t count, bool with_marker, unsigned threads,
+                                 std::vector<double>& xy, std::vector<int>& markers) {
+  if (count == 0) return true;
+  // A piece: lines parsed from a line start until one is not a point line
+  // or the piece ends; ids consecutive from the first line's own.
+  struct Piece {
+    std::size_t begin = 0, end = 0;  // byte range, both at line starts
+    long long first = -1;            // id of its first line
+    std::size_t parsed = 0;          // point lines from its start
+    std::size_t stop = 0;            // where parsing stopped
+    std::vector<double> xy;
+    std::vector<int> markers;
+  };
+  const std::size_t total = text_.size() - pos_;
+  const std::size_t pieces = std::max<std::size_t>(1, std::min<std::size_t>(threads, total / (1u << 20)));
+  std::vector<Piece> part(pieces);
+  for (std::size_t j = 0; j < pieces; ++j) {
+    std::size_t b = pos_ + total * j / pieces;
+    if (j > 0) b = std::min(text_.size(), line_end(b) + 1);  // the next line start
+    part[j].begin = b;
+  }
+  for (std::size_t j = 0; j < pieces; ++j) part[j].end = j + 1 < pieces ? part[j + 1].begin : text_.size();
+  detail::run_tasks(pieces, threads, [&](std::size_t j) {
+    Piece& q = part[j];
+    if (q.begin >= q.end) return;
+    // A reader over the piece, sharing the text (no copy).
+    TextReader r(file_, Mapping{});
+    r.text_ = text_.substr(0, q.end);
+    r.pos_ = q.begin;
+    const char* p = r.text_.data() + q.begin;
+    const char* const stop = r.text_.data() + r.text_.size();
+    while (p < stop && (*p == ' ' || *p == '\t')) ++p;
+    if (parse_small_unsigned(p, stop, q.first) == nullptr) return;
+    q.xy.reserve(2 * ((q.end - q.begin) / 16 + 1));
+    double x, y;
+    long long m = 0;
+    while (r.pos_ < q.end && r.try_point_line(q.first + static_cast<long long>(q.parsed), with_marker, x, y, m)) {
+      q.xy.push_back(x);
+      q.xy.push_back(y);
+      if (with_marker) q.markers.push_back(static_cast<int>(m));
+      ++q.parsed;
+    }
+    q.stop = r.pos_;
+  });
+  // Joined in order: each piece must go on from where the previous one
+  // ended, and the lines wanted must all have been point lines.
+  std::size_t got = 0;
+  long long next = first_id;
+  std::size_t end_pos = pos_;
+  for (const Piece& q : part) {
+    if (got == count) break;
+    if (q.begin >= q.end) continue;
+    const std::size_t need = count - got;
+    if (q.first != next || (q.parsed < need && q.stop != q.end)) return false;
+    const std::size_t take = std::min(need, q.parsed);
+    got += take;
+    next += static_cast<long long>(take);
+  }
+  if (got != count) return false;
+  // Commit: the values, and the position after the last line taken.
+  got = 0;
+  for (const Piece& q : part) {
+    if (got == count) break;
+    if (q.begin >= q.end) continue;
+    const std::size_t take = std::min(count - got, q.parsed);
+    xy.insert(xy.end(), q.xy.begin(), q.xy.begin() + static_cast<std::ptrdiff_t>(2 * take));
+    if (with_marker) markers.insert(markers.end(), q.markers.begin(), q.markers.begin() + static_cast<std::ptrdiff_t>(take));
+    end_pos = q.stop;
+    if (take < q.parsed) {  // the block ends inside this piece: find the end of its last line
+      end_pos = q.begin;
+      for (std::size_t k = 0; k < take; ++k) end_pos = std::min(text_.size(), line_end(end_pos) + 1);
+    }
+    got += take;
+  }
+  pos_ = end_pos;
+  line_ = next_line_ + count - 1;
+  next_line_ += count;
+  tokens_.clear();
   return true;
 }
 

@@ -73,6 +73,16 @@ class TextReader {
   // which gives the precise error message.
   bool try_point_line(long long expected_id, bool with_marker, double& x, double& y, long long& marker);
 
+  // try_point_line for the next `count` lines at once (ids first_id,
+  // first_id + 1, ...), on up to `threads` threads: the rest of the file is
+  // cut at line starts into pieces parsed concurrently, then joined in
+  // order. All or nothing: false, consuming nothing, when any of those lines
+  // is not of that shape (a comment, a blank line, an error...), so the
+  // caller's general path reads them and words any error as before; true
+  // when all were, with `xy` (x, y per line) and `markers` appended.
+  bool try_point_lines(long long first_id, std::size_t count, bool with_marker, unsigned threads,
+                       std::vector<double>& xy, std::vector<int>& markers);
+
   std::size_t size() const { return tokens_.size(); }
   std::string_view token(std::size_t i) const { return tokens_[i]; }
 

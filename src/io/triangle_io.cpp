@@ -16,6 +16,7 @@
 
 #include "deltamesh/errors.hpp"
 #include "deltamesh/version.hpp"
+#include "core/parallel.hpp"
 #include "io/atomic_file.hpp"
 #include "io/text_reader.hpp"
 #include "mesh/edge_rules.hpp"
@@ -144,7 +145,10 @@ NodeHeader parse_node_header(const TextReader& r) {
   return h;
 }
 
-void read_vertices(TextReader& r, const NodeHeader& h, Pslg& g) {
+// Vertex lists from this long are parsed on several threads.
+constexpr long long kParallelParseVertices = 100000;
+
+void read_vertices(TextReader& r, const NodeHeader& h, Pslg& g, unsigned threads) {
   const std::size_t na = static_cast<std::size_t>(h.attributes);
   const std::size_t fields = 3 + na + (h.markers ? 1 : 0);
   // Attribute counts too large for any line are caught here as well.
@@ -158,6 +162,13 @@ void read_vertices(TextReader& r, const NodeHeader& h, Pslg& g) {
   if (h.markers) g.point_markers.reserve(n);
   long long base = 0;
   for (long long i = 0; i < h.count; ++i) {
+    if (i == 1 && na == 0 && threads > 1 && h.count >= kParallelParseVertices) {
+      std::vector<double> xy;
+      if (r.try_point_lines(base + 1, n - 1, h.markers, threads, xy, g.point_markers)) {
+        for (std::size_t k = 0; k < xy.size(); k += 2) g.points.push_back({xy[k], xy[k + 1]});
+        break;
+      }
+    }
     if (i > 0 && na == 0) {
       double x, y;
       long long marker = 0;
@@ -298,20 +309,20 @@ TriNumbering number_triangles(const Mesh& m) {
 // ---------------------------------------------------------------------------
 // Readers
 
-Pslg read_node(const std::string& path) {
+Pslg read_node(const std::string& path, unsigned threads) {
   TextReader r = TextReader::open(path);
   if (!r.next_line())
     r.fail_at(r.last_line(), "expected the header line '<#vertices> 2 <#attributes> <#boundary markers>', "
                              "but the file holds no data");
   const NodeHeader h = parse_node_header(r);
   Pslg g;
-  read_vertices(r, h, g);
+  read_vertices(r, h, g, detail::resolve_threads(threads));
   reject_trailing_data(r, "the " + plural(h.count, "vertex", "vertices") + " announced on line " +
                               std::to_string(h.line));
   return g;
 }
 
-Pslg read_poly(const std::string& path) {
+Pslg read_poly(const std::string& path, unsigned threads) {
   TextReader r = TextReader::open(path);
   if (!r.next_line())
     r.fail_at(r.last_line(), "expected the header line '<#vertices> 2 <#attributes> <#boundary markers>', "
@@ -319,11 +330,11 @@ Pslg read_poly(const std::string& path) {
   const NodeHeader h = parse_node_header(r);
   Pslg g;
   if (h.count > 0) {
-    read_vertices(r, h, g);
+    read_vertices(r, h, g, detail::resolve_threads(threads));
   } else {
     const std::string node = sibling_node_path(path);
     try {
-      g = read_node(node);
+      g = read_node(node, threads);
     } catch (const IoError& e) {
       r.fail_at(h.line, "the .poly file lists no vertices, so they must come from '" + node +
                             "', which cannot be read (" + e.what() + ")");

@@ -43,6 +43,9 @@ Quality meshing:
       --no-boundary-steiner (twice: -YY)
   -D  conforming Delaunay: segments split until every edge is locally Delaunay
       --conforming-delaunay
+Threads:
+  -tN, -t N  (--threads=N) use N threads (default 0: every hardware thread; 1: the sequential code); not
+      one of Triangle's letters. Same input, switches and N: the same output, byte for byte
 Domain:
   -c  keep the whole convex hull and make its edges segments  --convex-hull
   -A  regional attribute per triangle from the .poly regions  --regional-attributes

@@ -56,6 +56,7 @@ void Phases::add(std::string name, Clock::time_point since) {
 RefineOptions refine_options(const Plan& plan) {
   RefineOptions r = plan.refine.options();
   r.progress = plan.progress;
+  r.threads = plan.threads;
   return r;
 }
 
@@ -86,9 +87,13 @@ void triangulate_input(const Plan& plan, const RunInput& in, RunResult& res, Pha
   topt.domain.regional_attributes = plan.domain.regional_attributes && segments;
   topt.domain.regional_area_bounds = plan.refine.input_area_bounds && segments;
   topt.check_segments = plan.check && segments;
-  if (plan.refine.requested()) topt.refine = plan.refine.options();
+  if (plan.refine.requested()) {
+    topt.refine = plan.refine.options();
+    topt.refine->threads = plan.threads;
+  }
   topt.progress = plan.progress;
   topt.trace = plan.trace;
+  topt.threads = plan.threads;
   res.mesh = triangulate(in.pslg, topt, &res.stats);
   res.refined = topt.refine.has_value();
   const TriangulateStats& st = res.stats;

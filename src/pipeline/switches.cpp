@@ -89,6 +89,12 @@ class SwitchString {
         case 'Y':
           ++o_.plan.refine.no_boundary_steiner;
           break;
+        case 't': {  // not one of Triangle's letters
+          const std::string_view num = digits();
+          if (num.empty()) throw UsageError{"switch -t needs a thread count (-t4, or -t 4; 0: every hardware thread)"};
+          o_.plan.threads = thread_count("-t" + std::string(num), num);
+          break;
+        }
         // -u: Triangle calls a function compiled into it; here that is the
         // API's RefineOptions::max_area_at / max_edge_at callback.
         case 'u': planned(c, {}, "user size function: the C++ API's RefineOptions::max_area_at"); break;
@@ -98,7 +104,7 @@ class SwitchString {
         default:
           if (std::isdigit(static_cast<unsigned char>(c)) || c == '.')
             throw UsageError{std::string("number '") + c + "' in '-" + std::string(s_) +
-                             "' does not follow a switch that takes one (q, a, S)"};
+                             "' does not follow a switch that takes one (q, a, S, t)"};
           throw UsageError{std::string("unknown switch -") + c + " in '-" + std::string(s_) +
                            "' (see deltamesh --help)"};
       }
@@ -151,6 +157,18 @@ class SwitchString {
       throw UsageError{std::string("-") + c + std::string(num) + ": '" + std::string(num) + "' is not a number"};
     return v;
   }
+  static unsigned thread_count(const std::string& what, std::string_view num) {
+    unsigned n = 0;
+    const auto r = std::from_chars(num.data(), num.data() + num.size(), n);
+    if (num.empty() || r.ec != std::errc() || r.ptr != num.data() + num.size() || n > 4096)
+      throw UsageError{what + ": a thread count from 0 (every hardware thread) to 4096"};
+    return n;
+  }
+
+ public:
+  static unsigned parse_thread_count(const std::string& what, std::string_view num) { return thread_count(what, num); }
+
+ private:
   void planned(char c, std::string_view num, const char* what) {
     o_.unavailable.push_back(std::string("-") + c + std::string(num) + " (" + what + ")");
   }
@@ -174,7 +192,7 @@ constexpr std::string_view kFlagNames[] = {
 constexpr std::string_view kValueNames[] = {
     "--svg",   "--trace",   "--output",   "--msh-version",    "--region-property", "--area-property",
     "--min-angle", "--max-area", "--steiner-budget", "--cdt",            "--steiner",
-    "--encroachment", "--order", "--time-limit",    "--stats",           "--fill"};
+    "--encroachment", "--order", "--time-limit",    "--stats",           "--fill", "--threads"};
 
 std::size_t edit_distance(std::string_view a, std::string_view b) {
   std::vector<std::size_t> row(b.size() + 1);
@@ -313,6 +331,8 @@ void apply_long_option(CommandLine& cl, std::string_view name_view, std::string_
     if (v.size() > 5) cl.stats_path = v.substr(5);
     else if (v == "json:") throw UsageError{"--stats=json: needs a file name after ':'"};
     cl.stats_json = true;
+  } else if (name == "--threads") {
+    cl.plan.threads = SwitchString::parse_thread_count("--threads=" + std::string(value), value);
   } else if (name == "--fill") {
     const std::string v = std::string(value);
     const std::optional<FillRule> r = parse_fill_rule(v);
@@ -398,7 +418,12 @@ CommandLine parse_arguments(const std::vector<std::string>& args) {
         else throw InternalError("parse_arguments", "flag " + name + " is listed but not handled");
       }
     } else if (a.size() > 1 && a[0] == '-') {
-      SwitchString(std::string_view(a).substr(1), o).parse();
+      // "-t 4": a switch string ending in t takes a count from the next argument.
+      std::string s = a.substr(1);
+      if (s.back() == 't' && i + 1 < args.size() && !args[i + 1].empty() &&
+          args[i + 1].find_first_not_of("0123456789") == std::string::npos)
+        s += args[++i];
+      SwitchString(s, o).parse();
     } else {
       if (!o.input.empty()) throw UsageError{"more than one input file: '" + o.input + "' and '" + a + "'"};
       o.input = a;

@@ -18,6 +18,7 @@
 #include <numbers>
 
 #include "algo/refine/cavity.hpp"
+#include "algo/refine_parallel.hpp"
 #include "algo/refine/refiner.hpp"
 #include "algo/refine/steiner.hpp"
 #include "deltamesh/progress.hpp"
@@ -423,6 +424,7 @@ namespace deltamesh {
 using refinement::Refiner;
 
 RefineStats refine(Mesh& mesh, const RefineOptions& options) {
+  if (std::optional<RefineStats> in_parts = detail::refine_in_parts(mesh, options)) return *in_parts;
   RefineStats stats;
   if (!mesh.compacted()) mesh.compact();
   stats.input_vertices = mesh.num_vertices();

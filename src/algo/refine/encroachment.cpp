@@ -16,6 +16,7 @@
 #include <numbers>
 
 #include "algo/refine/refiner.hpp"
+#include "algo/refine_parallel.hpp"
 #include "core/expansion.hpp"
 #include "deltamesh/predicates.hpp"
 
@@ -78,6 +79,7 @@ bool Refiner::encroached(HalfEdgeId e) const {
 // Subsegment e may be split: -Y/-YY allow it, and its split point is a new
 // point above the precision floor.
 bool Refiner::splittable(HalfEdgeId e) const {
+  if (fl_[e] & detail::kFrozenEdge) return false;  // a cut of refine_in_parts
   switch (opt_.segment_splitting) {
     case SegmentSplitting::All: break;
     case SegmentSplitting::InteriorOnly:

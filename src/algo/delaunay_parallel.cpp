@@ -1,0 +1,311 @@
+// Parallel Delaunay triangulation by slabs, merged along the seams.
+//
+// The points are cut into vertical slabs by x. Each slab is triangulated on
+// its own thread by the sequential delaunay(). A triangle whose closed
+// circumdisc lies inside its slab has no point of another slab in it, so it
+// is a Delaunay triangle of the whole set and is kept as it is. The others
+// (their disc crosses a slab boundary, or they are ghosts beyond the slab's
+// hull) are dropped; the gap they leave, between the kept regions, is
+// triangulated again from their vertices, as a constrained triangulation
+// whose segments are the edges between kept and dropped triangles. Its
+// triangles outside the kept regions fill the gap. Every edge of the result
+// is then locally Delaunay (kept triangles have empty discs; the gap's are
+// Delaunay among the gap's vertices, and the rest of the points lie inside
+// the kept regions), so the result is Delaunay (the Delaunay lemma), and it
+// is the sequential triangulation whenever that one is unique.
+#include "algo/delaunay_parallel.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <string>
+#include <unordered_map>
+#include <utility>
+#include <vector>
+
+#include "core/parallel.hpp"
+#include "mesh/editor.hpp"
+#include "deltamesh/cdt.hpp"
+#include "deltamesh/errors.hpp"
+#include "deltamesh/pslg.hpp"
+
+namespace deltamesh::detail {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+constexpr double kEps = std::numeric_limits<double>::epsilon();
+
+double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+std::uint64_t directed_key(VertexId a, VertexId b) { return (std::uint64_t{a} << 32) | b; }
+
+// Whether the closed circumdisc of the counterclockwise triangle (a, b, c)
+// lies strictly between the lines x = lo and x = hi. Computed in doubles with
+// a generous bound on their rounding error (every term below is bounded with
+// twice the error it can have, and the sum four times): when the answer is
+// not certain it is false. A false only sends the triangle to the gap, which
+// is retriangulated with exact predicates, so no triangle is ever kept
+// wrongly; nearly flat triangles, whose circumcentres are ill-conditioned,
+// simply always go there.
+bool disc_inside_slab(const Point& a, const Point& b, const Point& c, double lo, double hi) {
+  const double bx = b.x - a.x, by = b.y - a.y, cx = c.x - a.x, cy = c.y - a.y;
+  const double d = bx * cy - by * cx;
+  const double dabs = std::abs(bx * cy) + std::abs(by * cx);
+  const double rd = 8 * kEps * dabs / std::abs(d);  // relative error of d
+  if (!(rd < 0.125)) return false;
+  const double bb = bx * bx + by * by, cc = cx * cx + cy * cy;
+  const double ux = (cy * bb - by * cc) / (2 * d), uy = (bx * cc - cx * bb) / (2 * d);
+  const double nx_err = 16 * kEps * (std::abs(cy) * bb + std::abs(by) * cc);
+  const double ny_err = 16 * kEps * (std::abs(bx) * cc + std::abs(cx) * bb);
+  const double ex = (nx_err / std::abs(2 * d) + std::abs(ux) * 2 * rd) * 1.5 + 2 * kEps * std::abs(ux);
+  const double ey = (ny_err / std::abs(2 * d) + std::abs(uy) * 2 * rd) * 1.5 + 2 * kEps * std::abs(uy);
+  const double r = std::sqrt(ux * ux + uy * uy);
+  const double centre = a.x + ux;
+  const double slack = 4 * (2 * ex + ey + 8 * kEps * (std::abs(a.x) + std::abs(ux) + r));
+  return centre - r - slack > lo && centre + r + slack < hi;
+}
+
+// One slab: its points, its triangulation and what the merge needs of it.
+struct Slab {
+  double lo = 0, hi = 0;       // lo <= x < hi
+  std::vector<VertexId> ids;   // slab vertex -> input index (input order)
+  Mesh mesh;                   // closed (ghosts), slab numbering
+  DelaunayStats stats;
+  std::vector<TriId> rank;     // per slot: index among the kept triangles, or kNone
+  std::size_t kept = 0;
+  std::vector<HalfEdgeId> seams;  // half-edges of kept triangles whose other side is dropped
+  std::vector<VertexId> gap_vertices;  // input indices of the vertices of dropped triangles and seams
+  bool failed = false;         // no triangle: the decomposition does not apply
+};
+
+void triangulate_slab(std::span<const Point> points, Slab& s) {
+  std::vector<Point> pts;
+  for (std::size_t i = 0; i < points.size(); ++i)
+    if (points[i].x >= s.lo && points[i].x < s.hi) {
+      s.ids.push_back(static_cast<VertexId>(i));
+      pts.push_back(points[i]);
+    }
+  DelaunayOptions o;
+  o.keep_ghosts = true;
+  o.threads = 1;
+  try {
+    s.mesh = delaunay(pts, o, &s.stats);
+  } catch (const InputError&) {
+    s.failed = true;
+    return;
+  }
+  const Mesh& m = s.mesh;
+  const std::size_t slots = m.num_triangle_slots();
+  s.rank.assign(slots, kNone);
+  for (TriId t = 0; t < slots; ++t) {
+    if (!m.is_real(t)) continue;
+    const auto [a, b, c] = m.triangle(t);
+    if (disc_inside_slab(m.point(a), m.point(b), m.point(c), s.lo, s.hi)) s.rank[t] = static_cast<TriId>(s.kept++);
+  }
+  std::vector<std::uint8_t> in_gap(pts.size(), 0);
+  for (TriId t = 0; t < slots; ++t) {
+    if (!m.is_real(t)) continue;
+    if (s.rank[t] == kNone) {
+      for (VertexId v : m.triangle(t)) in_gap[v] = 1;
+      continue;
+    }
+    for (HalfEdgeId e = 3 * t; e < 3 * t + 3; ++e)
+      if (s.rank[tri_of(m.twin(e))] == kNone) {
+        s.seams.push_back(e);
+        in_gap[m.origin(e)] = in_gap[m.dest(e)] = 1;
+      }
+  }
+  for (VertexId v = 0; v < pts.size(); ++v)
+    if (in_gap[v]) s.gap_vertices.push_back(s.ids[v]);
+}
+
+// Slab boundaries: quantiles of x over a fixed sample of the points, so the
+// cut depends only on the input and the number of parts.
+std::vector<double> slab_boundaries(std::span<const Point> points, unsigned parts) {
+  const std::size_t step = std::max<std::size_t>(1, points.size() / 65536);
+  std::vector<double> xs;
+  for (std::size_t i = 0; i < points.size(); i += step) xs.push_back(points[i].x);
+  std::sort(xs.begin(), xs.end());
+  std::vector<double> cuts;
+  for (unsigned j = 1; j < parts; ++j) {
+    const double c = xs[j * xs.size() / parts];
+    if (c > xs.front() && (cuts.empty() || c > cuts.back())) cuts.push_back(c);
+  }
+  return cuts;
+}
+
+}  // namespace
+
+std::optional<Mesh> parallel_delaunay(std::span<const Point> points, unsigned parts, unsigned threads,
+                                      DelaunayStats* stats) {
+  const std::size_t n = points.size();
+  if (parts < 2 || n < 3) return std::nullopt;
+  auto t0 = Clock::now();
+  const std::vector<double> cuts = slab_boundaries(points, parts);
+  if (cuts.empty()) return std::nullopt;
+  std::vector<Slab> slabs(cuts.size() + 1);
+  for (std::size_t j = 0; j < slabs.size(); ++j) {
+    slabs[j].lo = j == 0 ? -std::numeric_limits<double>::infinity() : cuts[j - 1];
+    slabs[j].hi = j == cuts.size() ? std::numeric_limits<double>::infinity() : cuts[j];
+  }
+  run_tasks(slabs.size(), threads, [&](std::size_t j) { triangulate_slab(points, slabs[j]); });
+  for (const Slab& s : slabs)
+    if (s.failed) return std::nullopt;
+  if (stats) stats->sort_seconds = seconds_since(t0);
+  t0 = Clock::now();
+
+  // The gap: its vertices (input order) and its segments (the seams).
+  std::vector<VertexId> gap_ids;
+  for (const Slab& s : slabs) gap_ids.insert(gap_ids.end(), s.gap_vertices.begin(), s.gap_vertices.end());
+  std::sort(gap_ids.begin(), gap_ids.end());
+  std::unordered_map<VertexId, VertexId> gap_index;
+  gap_index.reserve(2 * gap_ids.size());
+  Pslg g;
+  g.points.reserve(gap_ids.size());
+  for (VertexId v : gap_ids) {
+    gap_index.emplace(v, static_cast<VertexId>(g.points.size()));
+    g.points.push_back(points[v]);
+  }
+  for (const Slab& s : slabs)
+    for (HalfEdgeId e : s.seams) {
+      const VertexId a = gap_index.at(s.ids[s.mesh.origin(e)]), b = gap_index.at(s.ids[s.mesh.dest(e)]);
+      g.segments.push_back({std::min(a, b), std::max(a, b), 0});
+    }
+  std::sort(g.segments.begin(), g.segments.end(),
+            [](const Segment& x, const Segment& y) { return x.a != y.a ? x.a < y.a : x.b < y.b; });
+  g.segments.erase(std::unique(g.segments.begin(), g.segments.end(),
+                               [](const Segment& x, const Segment& y) { return x.a == y.a && x.b == y.b; }),
+                   g.segments.end());
+  CdtOptions copt;
+  copt.strict = true;  // seams are edges of Delaunay triangles: they cannot cross
+  Mesh gap;
+  try {
+    gap = constrained_triangulation(g, copt);
+  } catch (const InputError& e) {
+    throw InternalError("parallel_delaunay", std::string("the seams do not make a triangulation: ") + e.what());
+  }
+  if (gap.num_vertices() != gap_ids.size())
+    throw InternalError("parallel_delaunay", "the gap's triangulation added vertices");
+
+  // The kept regions seen from the gap: flood from the kept side of every
+  // seam, never across a seam.
+  std::unordered_map<std::uint64_t, HalfEdgeId> gap_edge;
+  gap_edge.reserve(4 * gap.num_triangle_slots());
+  const std::size_t gap_slots = gap.num_triangle_slots();
+  for (TriId t = 0; t < gap_slots; ++t)
+    if (gap.is_real(t))
+      for (HalfEdgeId e = 3 * t; e < 3 * t + 3; ++e) gap_edge.emplace(directed_key(gap.origin(e), gap.dest(e)), e);
+  std::vector<std::uint8_t> covered(gap_slots, 0);
+  std::vector<TriId> stack;
+  for (const Slab& s : slabs)
+    for (HalfEdgeId e : s.seams) {
+      const auto it = gap_edge.find(
+          directed_key(gap_index.at(s.ids[s.mesh.origin(e)]), gap_index.at(s.ids[s.mesh.dest(e)])));
+      if (it == gap_edge.end()) throw InternalError("parallel_delaunay", "a seam is not an edge of the gap");
+      const TriId t = tri_of(it->second);
+      if (!covered[t]) {
+        covered[t] = 1;
+        stack.push_back(t);
+      }
+    }
+  while (!stack.empty()) {
+    const TriId t = stack.back();
+    stack.pop_back();
+    for (HalfEdgeId e = 3 * t; e < 3 * t + 3; ++e) {
+      if (gap.is_constrained(e) || gap.twin(e) == kNone) continue;
+      const TriId u = tri_of(gap.twin(e));
+      if (gap.is_real(u) && !covered[u]) {
+        covered[u] = 1;
+        stack.push_back(u);
+      }
+    }
+  }
+
+  // The result: each slab's kept triangles in slot order, slab after slab,
+  // then the gap's triangles outside the kept regions.
+  std::vector<std::size_t> offset(slabs.size() + 1, 0);
+  for (std::size_t j = 0; j < slabs.size(); ++j) offset[j + 1] = offset[j] + slabs[j].kept;
+  std::vector<TriId> gap_rank(gap_slots, kNone);
+  std::size_t total = offset.back();
+  for (TriId t = 0; t < gap_slots; ++t)
+    if (gap.is_real(t) && !covered[t]) gap_rank[t] = static_cast<TriId>(total++ - offset.back());
+  if (total >= kNone / 3) throw InputError("too many triangles: at most 1431655764 are supported");
+
+  Mesh out;
+  MeshEditor(out).points().assign(points.begin(), points.end());
+  MeshEditor(out).out_edges().assign(n, kNone);
+  std::vector<VertexId>& tv = MeshEditor(out).triangle_vertices();
+  std::vector<HalfEdgeId>& tw = MeshEditor(out).twins();
+  tv.resize(3 * total);
+  tw.resize(3 * total);
+  run_tasks(slabs.size(), threads, [&](std::size_t j) {
+    Slab& s = slabs[j];
+    const Mesh& m = s.mesh;
+    const std::size_t base = 3 * offset[j];
+    for (TriId t = 0; t < s.rank.size(); ++t) {
+      if (s.rank[t] == kNone) continue;
+      const std::size_t f = base + 3 * std::size_t{s.rank[t]};
+      for (int i = 0; i < 3; ++i) {
+        const HalfEdgeId e = 3 * t + i, o = m.twin(e);
+        tv[f + i] = s.ids[m.origin(e)];
+        const TriId u = s.rank[tri_of(o)];
+        tw[f + i] = u == kNone ? kNone : static_cast<HalfEdgeId>(base + 3 * std::size_t{u} + o % 3);
+      }
+    }
+  });
+  // Half-edges left without a twin: seams, the gap's edges along them, and
+  // the hull; paired by their vertices.
+  std::vector<HalfEdgeId> open;
+  for (std::size_t j = 0; j < slabs.size(); ++j)
+    for (HalfEdgeId e : slabs[j].seams)
+      open.push_back(static_cast<HalfEdgeId>(3 * (offset[j] + slabs[j].rank[tri_of(e)]) + e % 3));
+  const std::size_t gap_base = 3 * offset.back();
+  for (TriId t = 0; t < gap_slots; ++t) {
+    if (gap_rank[t] == kNone) continue;
+    const std::size_t f = gap_base + 3 * std::size_t{gap_rank[t]};
+    for (int i = 0; i < 3; ++i) {
+      const HalfEdgeId e = 3 * t + i, o = gap.twin(e);
+      tv[f + i] = gap_ids[gap.origin(e)];
+      const TriId u = o == kNone ? kNone : gap_rank[tri_of(o)];
+      tw[f + i] = u == kNone ? kNone : static_cast<HalfEdgeId>(gap_base + 3 * std::size_t{u} + o % 3);
+      if (u == kNone) open.push_back(static_cast<HalfEdgeId>(f + i));
+    }
+  }
+  for (Slab& s : slabs) s.mesh = Mesh{};
+  std::unordered_map<std::uint64_t, HalfEdgeId> by_vertices;
+  by_vertices.reserve(2 * open.size());
+  for (HalfEdgeId h : open) by_vertices.emplace(directed_key(tv[h], tv[next_edge(h)]), h);
+  std::size_t hull = 0;
+  for (HalfEdgeId h : open) {
+    const auto it = by_vertices.find(directed_key(tv[next_edge(h)], tv[h]));
+    if (it == by_vertices.end()) {
+      ++hull;
+      continue;
+    }
+    tw[h] = it->second;
+  }
+  // Euler: a triangulation of k distinct points with h hull edges has
+  // 2k - 2 - h triangles; anything else is an overlap or a hole.
+  std::size_t duplicates = 0;
+  for (const Slab& s : slabs) duplicates += s.stats.duplicates;
+  if (total + 2 + hull != 2 * (n - duplicates))
+    throw InternalError("parallel_delaunay", "the merged triangulation has " + std::to_string(total) +
+                                                 " triangles, " + std::to_string(hull) + " hull edges and " +
+                                                 std::to_string(n - duplicates) + " vertices");
+  out.compact();  // vertex out-edges, boundary first
+
+  if (stats) {
+    stats->duplicates = duplicates;
+    stats->duplicate_of.assign(n, kNone);
+    for (const Slab& s : slabs)
+      for (std::size_t v = 0; v < s.ids.size(); ++v)
+        if (s.stats.duplicate_of[v] != kNone) stats->duplicate_of[s.ids[v]] = s.ids[s.stats.duplicate_of[v]];
+    stats->insert_seconds = seconds_since(t0);
+  }
+  return out;
+}
+
+}  // namespace deltamesh::detail

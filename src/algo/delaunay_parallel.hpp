@@ -1,0 +1,24 @@
+// Delaunay triangulation of a point set on several threads (docs/scaling.md).
+#pragma once
+#include <optional>
+#include <span>
+
+#include "deltamesh/delaunay.hpp"
+
+namespace deltamesh::detail {
+
+// Points below this per part are not worth a thread: delaunay() stays
+// sequential when n / threads is smaller.
+inline constexpr std::size_t kMinPointsPerPart = 50000;
+
+// The Delaunay triangulation of `points` (compacted, input numbering, first
+// copies of duplicates kept: what delaunay() returns) built from `parts`
+// vertical slabs triangulated concurrently on `threads` threads and merged.
+// The same triangles as the sequential build whenever the triangulation is
+// unique; their numbering follows the slabs, so it depends on `parts`.
+// nullopt when the decomposition does not apply (a slab whose points make no
+// triangle, or fewer than two slabs): the caller builds sequentially.
+std::optional<Mesh> parallel_delaunay(std::span<const Point> points, unsigned parts, unsigned threads,
+                                      DelaunayStats* stats);
+
+}  // namespace deltamesh::detail

@@ -1,0 +1,40 @@
+// Delaunay refinement on several threads by domain decomposition, with the
+// sequential refine() as the unit of work (docs/scaling.md).
+#pragma once
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+
+#include "deltamesh/mesh.hpp"
+#include "deltamesh/refine.hpp"
+
+namespace deltamesh::detail {
+
+// Fewer triangles than this per thread (as the area bound predicts) are not
+// worth a part: refine() stays sequential.
+inline constexpr std::size_t kMinTrianglesPerPart = 150000;
+
+// The coarse stage refines to this many times the area bound before the
+// mesh is cut into parts.
+inline constexpr double kCoarseAreaFactor = 16.0;
+
+// Edge flag of the cuts between parts (with kConstrained): a temporary
+// segment that refinement never splits, so both sides keep its vertices.
+inline constexpr std::uint8_t kFrozenEdge = 2;
+
+// refine() in parts when options.threads allows it and the options are ones
+// the decomposition keeps (a uniform area bound, no size callbacks, budget,
+// time limit or -D, bounds up to kAutomaticBudgetAngle); nullopt otherwise,
+// and the caller refines sequentially. `parts` 0: one per thread.
+//   1. coarse: refine() to kCoarseAreaFactor x the area bound;
+//   2. cut: the triangles into `parts` vertical slabs by centroid; the edges
+//      between slabs become temporary segments;
+//   3. refine() every slab concurrently; the cuts are frozen (kFrozenEdge:
+//      never split), so both sides of a cut keep the same vertices;
+//   4. stitch the slabs back together, drop the temporary segments, flip to
+//      the constrained Delaunay triangulation, and refine() the whole once
+//      more: it finishes what the frozen cuts left (triangles near them), so
+//      the result meets the same bounds as the sequential refinement.
+std::optional<RefineStats> refine_in_parts(Mesh& mesh, const RefineOptions& options, unsigned parts = 0);
+
+}  // namespace deltamesh::detail

@@ -1,0 +1,49 @@
+// Threads for coarse-grained work: a handful of large tasks (one per part of
+// a decomposition), so plain std::jthread and an atomic task counter are
+// enough; a work-stealing scheduler (TBB) would add a dependency for nothing
+// at this grain (docs/scaling.md).
+#pragma once
+#include <algorithm>
+#include <atomic>
+#include <cstddef>
+#include <exception>
+#include <thread>
+#include <vector>
+
+namespace deltamesh::detail {
+
+// The thread count an option asks for: 0 means every hardware thread.
+inline unsigned resolve_threads(unsigned requested) {
+  if (requested != 0) return requested;
+  return std::max(1u, std::thread::hardware_concurrency());
+}
+
+// Runs task(i) for every i in [0, count) on up to `threads` threads, the
+// calling one included; tasks are taken in index order. After all have run,
+// the exception of the lowest-numbered task that threw (if any) is rethrown,
+// so which error a caller sees does not depend on scheduling.
+template <class Task>
+void run_tasks(std::size_t count, unsigned threads, Task&& task) {
+  std::vector<std::exception_ptr> errors(count);
+  std::atomic<std::size_t> next{0};
+  auto worker = [&] {
+    for (std::size_t i = next.fetch_add(1); i < count; i = next.fetch_add(1)) {
+      try {
+        task(i);
+      } catch (...) {
+        errors[i] = std::current_exception();
+      }
+    }
+  };
+  {
+    const std::size_t helpers = std::min<std::size_t>(std::max(1u, threads), count) - (count > 0 ? 1 : 0);
+    std::vector<std::jthread> pool;
+    pool.reserve(helpers);
+    for (std::size_t k = 0; k < helpers; ++k) pool.emplace_back(worker);
+    worker();
+  }  // joined here
+  for (const std::exception_ptr& e : errors)
+    if (e) std::rethrow_exception(e);
+}
+
+}  // namespace deltamesh::detail

@@ -1,0 +1,306 @@
+// The parallel Delaunay triangulation (algo/delaunay_parallel.cpp): the same
+// triangles as the sequential build where the triangulation is unique (the
+// library's exact predicates decide both), a valid Delaunay triangulation
+// where it is not (grids, cocircular points), the same duplicates, and the
+// same output run after run for a given thread count. Slab counts above the
+// thread count are tested through detail::parallel_delaunay on small inputs.
+// Refinement in parts (algo/refine_parallel.cpp): validated meshes with the
+// sequential run's bounds and about its size, the same mesh run after run.
+// The .node reader's parallel parse: the same points and the same errors.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <cstdint>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "algo/delaunay_parallel.hpp"
+#include "algo/refine_parallel.hpp"
+#include "deltamesh-gen/generators.hpp"
+#include "deltamesh/delaunay.hpp"
+#include "deltamesh/pipeline.hpp"
+#include "deltamesh/switches.hpp"
+#include "deltamesh/triangle_io.hpp"
+#include "deltamesh/triangulate.hpp"
+#include "deltamesh/validate.hpp"
+#include "test_adversarial_util.hpp"
+
+namespace dm = deltamesh;
+
+namespace {
+
+// Triangles as sorted vertex triples, in sorted order: the triangulation
+// without its numbering.
+std::vector<std::array<dm::VertexId, 3>> triangle_set(const dm::Mesh& m) {
+  std::vector<std::array<dm::VertexId, 3>> out;
+  for (dm::TriId t = 0; t < m.num_triangle_slots(); ++t) {
+    if (!m.is_real(t)) continue;
+    std::array<dm::VertexId, 3> v = m.triangle(t);
+    std::sort(v.begin(), v.end());
+    out.push_back(v);
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+void expect_valid_delaunay(const dm::Mesh& m, const std::string& what) {
+  const dm::CheckReport r = dm::check(m);  // Delaunay, convex hull, topology
+  EXPECT_TRUE(r.ok()) << what << ": " << r.summary();
+}
+
+dm::Mesh sequential(const std::vector<dm::Point>& p, dm::DelaunayStats* st = nullptr) {
+  dm::DelaunayOptions o;
+  o.threads = 1;
+  return dm::delaunay(p, o, st);
+}
+
+dm::Mesh slabs(const std::vector<dm::Point>& p, unsigned parts, unsigned threads, dm::DelaunayStats* st = nullptr) {
+  std::optional<dm::Mesh> m = dm::detail::parallel_delaunay(p, parts, threads, st);
+  EXPECT_TRUE(m.has_value()) << parts << " slabs";
+  return m ? std::move(*m) : dm::Mesh{};
+}
+
+TEST(ParallelDelaunay, SameTrianglesAsSequentialOnRandomPoints) {
+  for (const auto& [name, pts] : {std::pair{"uniform", dm::gen::uniform_points(30000, 7)},
+                                  std::pair{"gaussian", dm::gen::gaussian_points(30000, 8)}}) {
+    const dm::Mesh seq = sequential(pts);
+    const auto expected = triangle_set(seq);
+    for (unsigned parts : {2u, 3u, 5u, 8u}) {
+      const dm::Mesh par = slabs(pts, parts, 2);
+      expect_valid_delaunay(par, std::string(name) + " " + std::to_string(parts) + " slabs");
+      EXPECT_EQ(triangle_set(par), expected) << name << ", " << parts << " slabs";
+      EXPECT_EQ(par.num_vertices(), seq.num_vertices());
+    }
+  }
+}
+
+TEST(ParallelDelaunay, PublicEntryUsesThreads) {
+  // 2 x kMinPointsPerPart points: two slabs with threads = 2.
+  const auto pts = dm::gen::uniform_points(2 * dm::detail::kMinPointsPerPart + 10, 11);
+  dm::DelaunayOptions o;
+  o.threads = 2;
+  const dm::Mesh par = dm::delaunay(pts, o);
+  expect_valid_delaunay(par, "threads = 2");
+  const dm::Mesh seq = sequential(pts);
+  EXPECT_EQ(triangle_set(par), triangle_set(seq));
+  // Numbered slab by slab: not the sequential order (so the slabs were used).
+  EXPECT_FALSE(std::equal(par.triangle_vertices().begin(), par.triangle_vertices().end(),
+                          seq.triangle_vertices().begin(), seq.triangle_vertices().end()));
+}
+
+TEST(ParallelDelaunay, DegenerateInputsGiveValidDelaunayTriangulations) {
+  // A grid: every cell is four cocircular points, the slab cuts fall on
+  // columns. Cocircular points: one circle for every triangle.
+  const auto grid = dm::gen::grid_points(40000);
+  const auto circle = dm::gen::cocircular_points(5000, 3);
+  for (unsigned parts : {2u, 4u, 7u}) {
+    const dm::Mesh g = slabs(grid, parts, 3);
+    expect_valid_delaunay(g, "grid, " + std::to_string(parts) + " slabs");
+    EXPECT_EQ(g.num_triangles(), sequential(grid).num_triangles());
+    const dm::Mesh c = slabs(circle, parts, 3);
+    expect_valid_delaunay(c, "circle, " + std::to_string(parts) + " slabs");
+    EXPECT_EQ(c.num_triangles(), sequential(circle).num_triangles());
+  }
+}
+
+TEST(ParallelDelaunay, DuplicatesAsSequential) {
+  const auto pts = dm::gen::duplicate_points(40000, 5);
+  dm::DelaunayStats seq_st, par_st;
+  const dm::Mesh seq = sequential(pts, &seq_st);
+  const dm::Mesh par = slabs(pts, 4, 4, &par_st);
+  expect_valid_delaunay(par, "duplicates");
+  EXPECT_EQ(par_st.duplicates, seq_st.duplicates);
+  EXPECT_EQ(par_st.duplicate_of, seq_st.duplicate_of);
+  EXPECT_EQ(triangle_set(par), triangle_set(seq));
+}
+
+TEST(ParallelDelaunay, SlabsWithoutTriangleFallBack) {
+  // Two vertical lines of points: a slab of one line has no triangle.
+  std::vector<dm::Point> pts;
+  for (int i = 0; i < 1000; ++i) pts.push_back({0.0, double(i)}), pts.push_back({1.0, double(i) + 0.5});
+  EXPECT_FALSE(dm::detail::parallel_delaunay(pts, 2, 2, nullptr).has_value());
+  dm::DelaunayOptions o;
+  o.threads = 2;
+  expect_valid_delaunay(dm::delaunay(pts, o), "two lines");
+}
+
+TEST(ParallelDelaunay, SameOutputRunAfterRun) {
+  const auto pts = dm::gen::uniform_points(30000, 21);
+  for (unsigned threads : {2u, 4u}) {
+    const dm::Mesh first = slabs(pts, threads, threads);
+    for (int run = 0; run < 3; ++run) {
+      const dm::Mesh again = slabs(pts, threads, threads);
+      EXPECT_TRUE(std::equal(first.triangle_vertices().begin(), first.triangle_vertices().end(),
+                             again.triangle_vertices().begin(), again.triangle_vertices().end()))
+          << threads << " threads, run " << run;
+    }
+  }
+}
+
+TEST(ParallelDelaunay, ThreadSwitches) {
+  EXPECT_EQ(dm::parse_arguments({"-t4", "in.node"}).plan.threads, 4u);
+  EXPECT_EQ(dm::parse_arguments({"-pt", "2", "in.poly"}).plan.threads, 2u);
+  EXPECT_EQ(dm::parse_arguments({"-pt", "2", "in.poly"}).input, "in.poly");
+  EXPECT_EQ(dm::parse_arguments({"--threads=3", "in.node"}).plan.threads, 3u);
+  EXPECT_EQ(dm::parse_arguments({"--threads", "1", "in.node"}).plan.threads, 1u);
+  EXPECT_EQ(dm::parse_arguments({"in.node"}).plan.threads, 0u);
+  EXPECT_THROW(dm::parse_arguments({"-t", "in.node"}), dm::UsageError);
+  EXPECT_THROW(dm::parse_arguments({"--threads=x", "in.node"}), dm::UsageError);
+  EXPECT_THROW(dm::parse_arguments({"--threads=5000", "in.node"}), dm::UsageError);
+}
+
+// A carved CDT of `g` (no refinement yet).
+dm::Mesh carved(const dm::Pslg& g) {
+  dm::TriangulateOptions o;
+  o.threads = 1;
+  return dm::triangulate(g, o);
+}
+
+double smallest_angle(const dm::Mesh& m) {
+  double worst = 180;
+  for (dm::TriId t = 0; t < m.num_triangle_slots(); ++t) {
+    if (!m.is_real(t)) continue;
+    const auto v = m.triangle(t);
+    for (int i = 0; i < 3; ++i) {
+      const dm::Point a = m.point(v[i]), b = m.point(v[(i + 1) % 3]), c = m.point(v[(i + 2) % 3]);
+      const double ux = b.x - a.x, uy = b.y - a.y, wx = c.x - a.x, wy = c.y - a.y;
+      const double ang = std::atan2(std::abs(ux * wy - uy * wx), ux * wx + uy * wy) * 180 / 3.14159265358979323846;
+      worst = std::min(worst, ang);
+    }
+  }
+  return worst;
+}
+
+struct RefineCase {
+  const char* name;
+  dm::Pslg pslg;
+  double angle, area;
+};
+
+TEST(ParallelRefine, SameBoundsAsSequential) {
+  const bool quick = dm::test::quick_tests();
+  std::vector<RefineCase> cases;
+  cases.push_back({"square-hole q30", dm::gen::square_with_hole(64), 30, quick ? 2e-4 : 5e-5});
+  cases.push_back({"smooth q33", dm::gen::smooth_polygon(2000), 33, quick ? 4e-4 : 1e-4});
+  for (const RefineCase& c : cases) {
+    dm::RefineOptions o;
+    o.min_angle_deg = c.angle;
+    o.max_area = c.area;
+    o.threads = 1;
+    dm::Mesh seq = carved(c.pslg);
+    const dm::RefineStats seq_st = dm::refine(seq, o);
+    ASSERT_TRUE(seq_st.complete) << c.name;
+    for (unsigned parts : {2u, 3u}) {
+      o.threads = parts;
+      dm::Mesh par = carved(c.pslg);
+      const std::optional<dm::RefineStats> st = dm::detail::refine_in_parts(par, o, parts);
+      ASSERT_TRUE(st.has_value()) << c.name;
+      EXPECT_TRUE(st->complete) << c.name << ": " << st->summary();
+      EXPECT_EQ(st->too_large, 0u) << c.name;
+      // No small input angles here: every triangle meets the bound.
+      EXPECT_GE(smallest_angle(par), c.angle - 1e-9) << c.name << ", " << parts << " parts";
+      const double ratio = double(par.num_triangles()) / double(seq.num_triangles());
+      EXPECT_NEAR(ratio, 1.0, 0.03) << c.name << ": " << par.num_triangles() << " vs " << seq.num_triangles();
+      dm::CheckOptions co;
+      co.convex_hull = false;
+      co.pslg = &c.pslg;
+      const dm::CheckReport r = dm::check(par, co);
+      EXPECT_TRUE(r.ok()) << c.name << ", " << parts << " parts: " << r.summary();
+      EXPECT_EQ(st->steiner_points, par.num_vertices() - c.pslg.points.size());
+    }
+  }
+}
+
+TEST(ParallelRefine, SameMeshRunAfterRun) {
+  const dm::Pslg g = dm::gen::square_with_hole(64);
+  dm::RefineOptions o;
+  o.min_angle_deg = 30;
+  o.max_area = 2e-4;
+  for (unsigned parts : {2u, 4u}) {
+    o.threads = parts;
+    dm::Mesh first = carved(g);
+    ASSERT_TRUE(dm::detail::refine_in_parts(first, o, parts).has_value());
+    for (int run = 0; run < 2; ++run) {
+      dm::Mesh again = carved(g);
+      ASSERT_TRUE(dm::detail::refine_in_parts(again, o, parts).has_value());
+      EXPECT_TRUE(std::equal(first.triangle_vertices().begin(), first.triangle_vertices().end(),
+                             again.triangle_vertices().begin(), again.triangle_vertices().end()))
+          << parts << " parts, run " << run;
+      EXPECT_TRUE(std::equal(first.points().begin(), first.points().end(), again.points().begin(),
+                             again.points().end(), [](const dm::Point& a, const dm::Point& b) {
+                               return a.x == b.x && a.y == b.y;
+                             }));
+    }
+  }
+}
+
+TEST(ParallelRefine, OptionsItCannotKeepAreSequential) {
+  dm::Mesh m = carved(dm::gen::square_with_hole(64));
+  dm::RefineOptions o;
+  o.max_area = 1e-4;
+  o.threads = 2;
+  o.time_limit_seconds = 100;  // a time limit is per run: not split
+  EXPECT_FALSE(dm::detail::refine_in_parts(m, o, 2).has_value());
+  o.time_limit_seconds = 0;
+  o.max_area = -1;  // no area bound: nothing says how large the mesh gets
+  EXPECT_FALSE(dm::detail::refine_in_parts(m, o, 2).has_value());
+  o.max_area = 1e-4;
+  o.threads = 1;
+  EXPECT_FALSE(dm::detail::refine_in_parts(m, o, 2).has_value());
+}
+
+// A .node file of `n` uniform points; `extra` is written before line `at`.
+std::string write_node_file(const std::string& name, std::size_t n, std::size_t at = 0, const std::string& extra = "") {
+  const std::string path = (std::filesystem::temp_directory_path() / name).string();
+  std::ofstream f(path);
+  f << n << " 2 0 1\n";
+  const auto pts = dm::gen::uniform_points(n, 3);
+  char buf[96];
+  for (std::size_t i = 0; i < n; ++i) {
+    if (i == at && !extra.empty()) f << extra;
+    std::snprintf(buf, sizeof buf, "%zu %.17g %.17g %d\n", i + 1, pts[i].x, pts[i].y, int(i % 3));
+    f << buf;
+  }
+  return path;
+}
+
+TEST(ParallelParse, SamePointsAndErrorsAsOneThread) {
+  const std::size_t n = 150000;
+  for (const auto& [at, extra] : {std::pair<std::size_t, std::string>{0, ""}, {90000, "# a comment\n"},
+                                  {120000, "\n"}}) {
+    const std::string path = write_node_file("dm_parallel_parse.node", n, at, extra);
+    const dm::Pslg one = dm::read_node(path, 1);
+    for (unsigned threads : {2u, 4u}) {
+      const dm::Pslg many = dm::read_node(path, threads);
+      ASSERT_EQ(many.points.size(), n);
+      EXPECT_TRUE(std::equal(one.points.begin(), one.points.end(), many.points.begin(),
+                             [](const dm::Point& a, const dm::Point& b) { return a.x == b.x && a.y == b.y; }));
+      EXPECT_EQ(one.point_markers, many.point_markers);
+      EXPECT_EQ(one.first_index, many.first_index);
+    }
+    std::remove(path.c_str());
+  }
+  // A malformed line deep in the file: the same message, naming its line.
+  const std::string bad = write_node_file("dm_parallel_parse_bad.node", n, 140000, "140001 0.5 x 1\n");
+  std::string one_msg, many_msg;
+  try {
+    dm::read_node(bad, 1);
+  } catch (const dm::ParseError& e) {
+    one_msg = e.what();
+  }
+  try {
+    dm::read_node(bad, 4);
+  } catch (const dm::ParseError& e) {
+    many_msg = e.what();
+  }
+  EXPECT_NE(one_msg.find(":140002:"), std::string::npos) << one_msg;
+  EXPECT_EQ(one_msg, many_msg);
+  std::remove(bad.c_str());
+}
+
+}  // namespace
