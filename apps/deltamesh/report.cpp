@@ -28,7 +28,9 @@ QualityReport quality(const Session& s, const RunResult& r) {
   q.min_angle_deg = rp.quality ? rp.min_angle.value_or(20.0) : 0.0;
   q.max_area = rp.max_area.value_or(-1.0);
   if (r.refined) q.input_vertices = r.stats.refine.input_vertices;
-  return quality_report(r.mesh, q, r.refined ? &r.stats.refine : nullptr);
+  QualityReport rep = quality_report(r.mesh, q, r.refined ? &r.stats.refine : nullptr);
+  rep.metric = r.metric_fit;
+  return rep;
 }
 
 void report(const Session& s, const RunResult& r, const std::vector<std::string>& written) {
@@ -108,6 +110,8 @@ void report(const Session& s, const RunResult& r, const std::vector<std::string>
                              .c_str());
   }
   if (r.adapted) std::printf("Adapted: %s\n", r.adapt.summary().c_str());
+  if (r.metric_adapted) std::printf("Adapted to the metric: %s\n", r.metric_adapt.summary().c_str());
+  if (r.metric_fit) std::printf("Metric fit: %s\n", r.metric_fit->summary().c_str());
   if (r.adapted && r.adapt.smooth.passes) std::printf("Smoothed: %s\n", r.adapt.smooth.summary().c_str());
   if (r.smoothed) {
     std::printf("Smoothed: %s", r.smooth.summary().c_str());
