@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <string>
 
 #include "algo/adapt/common.hpp"
@@ -40,6 +41,7 @@ constexpr double kCollinearTolerance = 1e-11;
 constexpr double kMaxTurnSine = 1e-6;
 // A swap or move must raise the worst quality by this factor (no cycles).
 constexpr double kGain = 1.01;
+constexpr double kCollapseFloor = 0.3;
 
 enum class Kind { Fixed, Interior, Segment };
 
@@ -96,11 +98,11 @@ class MetricAdapter {
  private:
   const Point& pt(VertexId v) const { return m_.point(v); }
 
-  // Compacting between passes is safe: each pass sweeps the slots anew.
+  // Compacting between passes is safe (each pass sweeps the slots anew), and
+  // done with or without a callback so that it sees the same run.
   void after(const char* pass) {
-    if (!opt_.after_pass) return;
     m_.compact();
-    opt_.after_pass(m_, pass);
+    if (opt_.after_pass) opt_.after_pass(m_, pass);
   }
 
   Metric eval(const Point& p) const {
@@ -175,19 +177,50 @@ class MetricAdapter {
 
   // ---- split ----------------------------------------------------------------
 
-  // One sweep over the edges present at its start: each longer than sqrt 2
-  // is split at its midpoint when both (or the one) halves of each side
-  // stay counter-clockwise.
+  // Edges (as vertex pairs) whose metric length is above `above` or below
+  // `below`, longest (shortest) first. Splits and collapses rewrite
+  // triangle slots, so a sweep over slots would skip edges that moved.
+  struct Candidate {
+    double length;
+    VertexId a, b;
+  };
+  std::vector<Candidate> candidates(bool longest) const {
+    std::vector<Candidate> c;
+    for (HalfEdgeId e = 0; e < m_.triangle_vertices().size(); ++e) {
+      if (!m_.is_real(tri_of(e))) continue;
+      const HalfEdgeId tw = m_.twin(e);
+      if (tw != kNone && tw < e) continue;
+      const VertexId a = m_.origin(e), b = m_.dest(e);
+      const double l = length(a, b);
+      if (longest ? l > kLongEdge : l < kShortEdge) c.push_back({l, a, b});
+    }
+    std::sort(c.begin(), c.end(), [&](const Candidate& x, const Candidate& y) {
+      return longest ? x.length > y.length : x.length < y.length;
+    });
+    return c;
+  }
+
+  // The half-edge a -> b, or b -> a on the boundary, or kNone.
+  HalfEdgeId find(VertexId a, VertexId b) {
+    const bool boundary = adaptation::star_of(m_, a, scratch2_, kMaxDegree);
+    for (HalfEdgeId o : scratch2_)
+      if (m_.dest(o) == b) return o;
+    if (boundary && !scratch2_.empty() && m_.origin(prev_edge(scratch2_.back())) == b) return prev_edge(scratch2_.back());
+    return kNone;
+  }
+
+  // Each edge longer than sqrt 2 (at the pass's start, longest first) is
+  // split at its midpoint when the halves of each side stay
+  // counter-clockwise (exact).
   void split_pass() {
-    const HalfEdgeId end = static_cast<HalfEdgeId>(m_.triangle_vertices().size());
-    for (HalfEdgeId e = 0; e < end; ++e) {
+    for (const Candidate& cand : candidates(true)) {
       if (opt_.max_vertices && live_vertices_ >= opt_.max_vertices) {
         st_.vertex_budget_hit = true;
         return;
       }
-      if (!m_.is_real(tri_of(e))) continue;
+      const HalfEdgeId e = find(cand.a, cand.b);
+      if (e == kNone) continue;
       const HalfEdgeId tw = m_.twin(e);
-      if (tw != kNone && tw < e) continue;
       const bool constrained = m_.is_constrained(e);
       if (constrained && !opt_.split_segments) continue;
       const VertexId a = m_.origin(e), b = m_.dest(e);
@@ -223,14 +256,10 @@ class MetricAdapter {
   // ---- collapse ---------------------------------------------------------------
 
   void collapse_pass() {
-    const HalfEdgeId end = static_cast<HalfEdgeId>(m_.triangle_vertices().size());
-    for (HalfEdgeId e = 0; e < end; ++e) {
-      if (!m_.is_real(tri_of(e))) continue;
-      const HalfEdgeId tw = m_.twin(e);
-      if (tw != kNone && tw < e) continue;
-      const VertexId a = m_.origin(e), b = m_.dest(e);
-      if (length(a, b) >= kShortEdge) continue;
-      if (!try_collapse(a, b)) try_collapse(b, a);
+    for (const Candidate& cand : candidates(false)) {
+      if (m_.out_edge(cand.a) == kNone || m_.out_edge(cand.b) == kNone) continue;
+      if (find(cand.a, cand.b) == kNone || length(cand.a, cand.b) >= kShortEdge) continue;
+      if (!try_collapse(cand.a, cand.b)) try_collapse(cand.b, cand.a);
     }
   }
 
@@ -271,7 +300,10 @@ class MetricAdapter {
     if (with_w == 0 || with_w == out.size() || common != with_w) return false;  // link condition
     for (VertexId u : nbr_)
       if (u != w && length(w, u) > kLongEdge) return false;
-    if (new_q < 0.5 * old_q) return false;
+    // No new triangle worse than kCollapseFloor, or than the old worst
+    // when that was already below it: repeated collapses cannot wear the
+    // quality down.
+    if (new_q < std::min(old_q, kCollapseFloor)) return false;
     collapse(v, w, out);
     ++st_.collapses;
     --live_vertices_;
@@ -362,7 +394,7 @@ class MetricAdapter {
       const std::vector<HalfEdgeId>& out = star_.out;
       const Point p = pt(v);
       double sx = 0, sy = 0;
-      double old_q = INFINITY;
+      double old_q = INFINITY, old_sum = 0;
       bool degenerate = false;
       for (HalfEdgeId o : out) {
         const VertexId x = m_.dest(o);
@@ -374,7 +406,9 @@ class MetricAdapter {
         const Point& q = pt(x);
         sx += q.x + (p.x - q.x) / l;
         sy += q.y + (p.y - q.y) / l;
-        old_q = std::min(old_q, quality(v, x, m_.origin(prev_edge(o))));
+        const double q0 = quality(v, x, m_.origin(prev_edge(o)));
+        old_q = std::min(old_q, q0);
+        old_sum += q0;
       }
       if (degenerate) continue;
       const Point target{sx / double(out.size()), sy / double(out.size())};
@@ -390,12 +424,15 @@ class MetricAdapter {
         if (!ok) continue;
         const Metric nm = eval(np);
         const Metric nl = adaptation::log_metric(nm);
-        double new_q = INFINITY;
+        double new_q = INFINITY, new_sum = 0;
         for (HalfEdgeId o : out) {
           const VertexId x = m_.dest(o), y = m_.origin(prev_edge(o));
-          new_q = std::min(new_q, metric_quality(np, pt(x), pt(y), tri_metric(nl, lg_[x], lg_[y])));
+          const double q1 = metric_quality(np, pt(x), pt(y), tri_metric(nl, lg_[x], lg_[y]));
+          new_q = std::min(new_q, q1);
+          new_sum += q1;
         }
-        if (!(new_q > kGain * old_q)) continue;
+        // The worst never drops; the worst or the mean must rise.
+        if (!(new_q >= old_q && (new_q > kGain * old_q || new_sum > kGain * old_sum))) continue;
         m_.points_mut()[v] = np;
         met_[v] = nm;
         lg_[v] = nl;

@@ -23,7 +23,10 @@ Eigen2 eigen(const Metric& m) {
   const double r = std::hypot(half, m.m12);
   // The larger eigenvalue's eigenvector makes angle theta with x.
   const double theta = 0.5 * std::atan2(m.m12, half);
-  return {mean - r, mean + r, -std::sin(theta), std::cos(theta)};
+  const double l2 = mean + r;
+  // The smaller one from the determinant when mean - r would cancel.
+  const double l1 = mean > 0 && l2 > 0 ? (m.m11 * m.m22 - m.m12 * m.m12) / l2 : mean - r;
+  return {l1, l2, -std::sin(theta), std::cos(theta)};
 }
 
 Metric from_eigen(double l1, double l2, double c, double s) {

@@ -165,11 +165,10 @@ int gradate_metric(const Mesh& mesh, std::vector<Metric>& m, double beta) {
     const double l = metric_length(m[from], q.x - p.x, q.y - p.y);
     const double eta = 1 + l * lnb;
     const Metric grown = adaptation::scaled(m[from], 1 / (eta * eta));
-    const Metric r = intersect(m[to], grown);
-    const double tol = 1e-3 * (std::fabs(m[to].m11) + std::fabs(m[to].m22));
-    if (std::fabs(r.m11 - m[to].m11) + std::fabs(r.m12 - m[to].m12) + std::fabs(r.m22 - m[to].m22) <= tol)
-      return false;
-    m[to] = r;
+    // Relative to M_to in its own directions, so a change across a thin
+    // direction counts as much as along a long one.
+    if (adaptation::excess(m[to], grown) <= 1 + 1e-3) return false;
+    m[to] = intersect(m[to], grown);
     return true;
   };
   int sweeps = 0;

@@ -32,4 +32,12 @@ inline Metric mean3(const Metric& a, const Metric& b, const Metric& c) {
 
 inline Metric scaled(const Metric& m, double k) { return {k * m.m11, k * m.m12, k * m.m22}; }
 
+// The largest eigenvalue of a^-1/2 b a^-1/2: above 1 when b asks for a
+// smaller size than a in some direction (and intersect(a, b) != a).
+inline double excess(const Metric& a, const Metric& b) {
+  const Eigen2 ea = eigen(a);
+  const Metric inv_half = from_eigen(1 / std::sqrt(ea.l1), 1 / std::sqrt(ea.l2), ea.c, ea.s);
+  return eigen(sandwich(inv_half, b)).l2;
+}
+
 }  // namespace deltamesh::adaptation
