@@ -126,7 +126,8 @@ py::dict triangulate_kw(py::object vertices, py::object segments, py::object hol
                         const std::string& steiner, const std::string& encroachment, const std::string& order,
                         py::object time_limit, bool jettison, bool second_order, bool edges, bool neighbors, bool check,
                         bool markers, bool quiet);
-py::dict adapt_dict(const py::dict& tri, py::object size, const std::string& opts, int smooth);
+py::dict adapt_dict(const py::dict& tri, py::object size, const std::string& opts, int smooth, py::object metric);
+py::dict adapt_metric_dict(const py::dict& tri, py::object metric, const std::string& opts, int smooth);  // metric.cpp
 py::dict check_dict(const py::dict& tri, bool delaunay, bool convex_hull, bool segments);
 py::dict validate_dict(const py::dict& tri, bool delaunay, bool convex_hull, bool segments);
 py::dict quality_dict(const py::dict& tri, double min_angle, double max_area);
