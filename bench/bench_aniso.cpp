@@ -10,7 +10,10 @@
 // (Mesh.Algorithm 7) meshes the square to the last aniso metric of each run
 // (a tensor view as background mesh) for comparison.
 //
-//   bench_aniso [--functions front,layer,smooth] [--n 250,500,...] [--iterations 5] [--svg DIR] [--gmsh DIR]
+//   bench_aniso [--functions front,layer,cross] [--n 250,500,...] [--methods iso,aniso] [--iterations 5]
+//               [--svg DIR] [--svg-n N] [--gmsh DIR]
+//
+// --svg: pictures of the meshes at N = --svg-n (default 500).
 //
 // Output: CSV on stdout, one row per (function, method, N) after the last
 // iteration; every mesh of every iteration goes through check().
@@ -231,6 +234,8 @@ int main(int argc, char** argv) {
   std::vector<double> ns = {250, 500, 1000, 2000, 4000, 8000};
   int iterations = 5;
   std::string svg_dir, gmsh_dir;
+  std::vector<std::string> methods = {"iso", "aniso"};
+  double svg_n = 500;
   for (int i = 1; i + 1 < argc; i += 2) {
     const std::string a = argv[i], v = argv[i + 1];
     if (a == "--functions") fnames = split(v);
@@ -239,6 +244,8 @@ int main(int argc, char** argv) {
       for (const std::string& x : split(v)) ns.push_back(std::atof(x.c_str()));
     } else if (a == "--iterations") iterations = std::atoi(v.c_str());
     else if (a == "--svg") svg_dir = v;
+    else if (a == "--svg-n") svg_n = std::atof(v.c_str());
+    else if (a == "--methods") methods = split(v);
     else if (a == "--gmsh") gmsh_dir = v;
     else {
       std::fprintf(stderr, "bench_aniso: unknown option %s\n", a.c_str());
@@ -251,6 +258,7 @@ int main(int argc, char** argv) {
     for (double n : ns) {
       for (const bool aniso : {false, true}) {
         const char* method = aniso ? "aniso" : "iso";
+        if (std::find(methods.begin(), methods.end(), method) == methods.end()) continue;
         dm::Mesh m = square(0.002);
         double seconds = 0;
         dm::MetricFit fit;
@@ -271,7 +279,7 @@ int main(int argc, char** argv) {
                     m.num_triangles(), m.num_vertices(), e.l2, e.linf, fit.within, fit.mean_length, fit.mean_quality,
                     fit.min_quality, seconds);
         std::fflush(stdout);
-        if (!svg_dir.empty() && n == ns[ns.size() / 2]) {
+        if (!svg_dir.empty() && n == svg_n) {
           dm::SvgOptions so;
           so.width_px = 600;
           so.title = fn.name + " " + method + " N=" + std::to_string(int(n)) + ": " +
