@@ -156,9 +156,11 @@ struct MetricAdaptStats {
 // or bend stay; triangle attributes and area bounds stay with their slots,
 // so regions separated by segments keep theirs; new vertices get
 // interpolated vertex attributes and their segment's marker. The mesh is
-// compacted and its unused vertices dropped on return (ids below
-// protect_first keep theirs). Throws InputError when the field gives a
-// tensor that is not a metric (naming the point).
+// compacted and its unused vertices dropped on return, the rest renumbered
+// in order (as coarsen()): protected vertices keep their ids when every
+// vertex before them is in a triangle. Throws InputError when the field
+// gives a tensor that is not a metric (naming the point); the mesh is then
+// a valid triangulation, partly adapted and not compacted.
 MetricAdaptStats adapt_to_metric(Mesh& mesh, const MetricField& metric, const MetricAdaptOptions& options = {});
 
 // How well a mesh fits a metric field.

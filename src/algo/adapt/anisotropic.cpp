@@ -227,6 +227,9 @@ class MetricAdapter {
       if (length(a, b) <= kLongEdge) continue;
       const Point mp{0.5 * (pt(a).x + pt(b).x), 0.5 * (pt(a).y + pt(b).y)};
       const VertexId c = m_.origin(prev_edge(e));
+      // On the boundary the rounded midpoint must not leave the domain (it
+      // could land on another part of the boundary across a slit).
+      if (tw == kNone && orient2d(pt(a), pt(b), mp) < 0) continue;
       if (!(orient2d(pt(a), mp, pt(c)) > 0 && orient2d(mp, pt(b), pt(c)) > 0)) continue;
       if (tw != kNone) {
         const VertexId d = m_.origin(prev_edge(tw));
@@ -272,6 +275,13 @@ class MetricAdapter {
     if (kind == Kind::Fixed) return false;
     if (kind == Kind::Segment && w != star_.cn[0] && w != star_.cn[1]) return false;
     if (kind == Kind::Interior && star_.boundary) return false;
+    if (kind == Kind::Segment && star_.boundary) {
+      // The boundary runs u -> v -> x (the domain on its left). Where v is a
+      // reflex vertex by rounding (left of u -> x), the new edge u-x would
+      // leave the domain and might cross another part of its boundary.
+      const VertexId u = m_.origin(prev_edge(star_.out.back())), x = m_.dest(star_.out.front());
+      if (orient2d(pt(u), pt(x), pt(v)) > 0) return false;
+    }
     const std::vector<HalfEdgeId>& out = star_.out;
     // Triangles of v: (v, dest(o), dest(rotate_ccw(o))) = (v, x, y).
     std::size_t with_w = 0;
