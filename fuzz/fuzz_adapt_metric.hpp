@@ -14,6 +14,7 @@
 #include <fuzzer/FuzzedDataProvider.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <cmath>
 #include <map>
 #include <string>
@@ -140,6 +141,9 @@ inline void metric_step(FuzzedDataProvider& in, Mesh& mesh, const Pslg* input, s
   o.smooth_passes = in.ConsumeIntegralInRange<int>(0, 2);
   o.split_segments = in.ConsumeBool();
   o.max_vertices = 1500;
+  if (verbose)
+    std::fprintf(stderr, "--- metric kind %d h_long %.17g aspect %g angle %.17g turn %.17g cx %.17g iterations %d smooth %d split_segments %d\n",
+                 kind, h_long, aspect, angle, turn, cx, o.iterations, o.smooth_passes, int(o.split_segments));
   MetricAdaptStats st;
   try {
     st = adapt_to_metric(mesh, field, o);

@@ -350,3 +350,26 @@ TEST(MetricAdapt, CommandLineReadsThreeValueMtrAndReportsTheFit) {
   EXPECT_NE(msg.find("not positive definite"), std::string::npos) << msg;
   fs::remove_all(dir);
 }
+
+// fuzz_adapt: a domain of two triangles meeting at a vertex, with two
+// boundary edges there almost collinear (a slit of zero width). A rounded
+// boundary split point used to land on the other side's boundary (a
+// T-junction the validator rejects).
+TEST(MetricAdapt, BoundarySplitsStayInsideAcrossASlit) {
+  dm::Pslg g;
+  g.points = {{4521191813414910, -131941395333120.03}, {4512395720392702, -131941395333119.97},
+              {4529987906437120, -131941395333119.98}, {4521191813414912, -123145302310912.03},
+              {4512395720392702, -131941395333120.03}};
+  g.segments = {{0, 1, 0}, {1, 2, 0}, {2, 3, 0}, {3, 4, 0}, {0, 4, 0}};
+  g.holes = {{4503599627370494.5, -140737488355327.97}};
+  dm::Mesh m = dm::triangulate(g);
+  m.remove_unused_vertices();
+  const double h = 1229291370879.4028, angle = 0.24943225071195796, turn = 1.6150728864268386e-13;
+  const dm::MetricField field = [=](double x, double y) { return rotated(h, h / 1000, angle + turn * (x + 0.5 * y)); };
+  dm::MetricAdaptOptions o;
+  o.iterations = 5;
+  o.max_vertices = 1500;
+  o.after_pass = [&](const dm::Mesh& mesh, const char* pass) { expect_valid(mesh, nullptr, pass); };
+  dm::adapt_to_metric(m, field, o);
+  expect_valid(m, nullptr, "final");
+}
