@@ -299,9 +299,12 @@ class MetricAdapter {
       old_q = std::min(old_q, quality(v, x, y));
       if (x == w || y == w) {
         ++with_w;
-        // v's edge to the third vertex must have a twin (it merges with w's).
+        // v's edge to the third vertex must have a twin (it merges with w's),
+        // and two segments must not merge (in a sliver whose third vertex is
+        // v's chain neighbour, v's edge to it is a segment).
         const HalfEdgeId vedge = x == w ? prev_edge(o) : o;  // y->v or v->x
         if (m_.twin(vedge) == kNone) return false;
+        if (m_.is_constrained(vedge) && m_.is_constrained(next_edge(o))) return false;
         continue;
       }
       if (!(orient2d(pt(w), pt(x), pt(y)) > 0)) return false;
@@ -320,12 +323,15 @@ class MetricAdapter {
     return true;
   }
 
+  struct Dead {
+    TriId t;
+    HalfEdgeId tv, tw_, hw;  // twin of v's edge to x, twin of w's edge to x, w's edge to x
+    VertexId x;
+  };
+  // v's edge to x inside the dead triangle (the twin of tv).
+  HalfEdgeId twin_of_vedge(const Dead& d) const { return m_.twin(d.tv); }
+
   void collapse(VertexId v, VertexId w, const std::vector<HalfEdgeId>& out) {
-    struct Dead {
-      TriId t;
-      HalfEdgeId tv, tw_, hw;  // twin of v's edge to x, twin of w's edge to x, w's edge to x
-      VertexId x;
-    };
     Dead dead[2];
     int nd = 0;
     std::vector<HalfEdgeId>& live = scratch2_;
@@ -342,11 +348,15 @@ class MetricAdapter {
         live.push_back(o);
       }
     }
+    // The merged edge is a segment when either part was (w's edge, or v's
+    // edge to a chain neighbour that closes a sliver).
     std::uint8_t flags[2];
     int markers[2];
     for (int i = 0; i < nd; ++i) {
-      flags[i] = m_.edge_flags(dead[i].hw);
-      markers[i] = m_.edge_marker(dead[i].hw);
+      const HalfEdgeId ve = twin_of_vedge(dead[i]);
+      const bool v_seg = m_.is_constrained(ve);
+      flags[i] = m_.edge_flags(dead[i].hw) | m_.edge_flags(ve);
+      markers[i] = v_seg ? m_.edge_marker(ve) : m_.edge_marker(dead[i].hw);
     }
     std::vector<VertexId>& tv = m_.tri_v_mut();
     for (HalfEdgeId o : live) tv[o] = w;
@@ -360,6 +370,10 @@ class MetricAdapter {
       }
       m_.set_edge_flags(d.tv, flags[i]);
       m_.set_edge_marker(d.tv, markers[i]);
+      if (d.tw_ != kNone) {
+        m_.set_edge_flags(d.tw_, flags[i]);
+        m_.set_edge_marker(d.tw_, markers[i]);
+      }
       // x's out-edge may have been in the dead triangle: tv's triangle has
       // one from x. tv runs w->x or x->w.
       const HalfEdgeId from_x = m_.origin(d.tv) == d.x ? d.tv : next_edge(d.tv);
