@@ -7,7 +7,7 @@
 #
 # Writes OUT_DIR/aniso.csv (bench_aniso's rows), OUT_DIR/aniso_table.md,
 # OUT_DIR/aniso_FUNCTION_l2.svg/.png (error plots) and
-# OUT_DIR/FUNCTION_{iso,aniso}.svg/.png (meshes at N = 500).
+# OUT_DIR/FUNCTION_{iso,aniso}.svg/.png (meshes at N = 2000).
 # Environment: N (complexities, default 250,500,1000,2000,4000,8000),
 # ISO_EXTRA (isotropic-only complexities to bracket the anisotropic errors,
 # default 16000,32000), ITERATIONS (default 5), NO_GMSH=1 to skip Gmsh.

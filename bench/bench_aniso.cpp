@@ -13,7 +13,7 @@
 //   bench_aniso [--functions front,layer,cross] [--n 250,500,...] [--methods iso,aniso] [--iterations 5]
 //               [--svg DIR] [--svg-n N] [--gmsh DIR]
 //
-// --svg: pictures of the meshes at N = --svg-n (default 500).
+// --svg: pictures of the meshes at N = --svg-n (default 2000).
 //
 // Output: CSV on stdout, one row per (function, method, N) after the last
 // iteration; every mesh of every iteration goes through check().
@@ -235,7 +235,7 @@ int main(int argc, char** argv) {
   int iterations = 5;
   std::string svg_dir, gmsh_dir;
   std::vector<std::string> methods = {"iso", "aniso"};
-  double svg_n = 500;
+  double svg_n = 2000;
   for (int i = 1; i + 1 < argc; i += 2) {
     const std::string a = argv[i], v = argv[i + 1];
     if (a == "--functions") fnames = split(v);
