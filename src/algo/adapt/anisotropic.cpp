@@ -14,6 +14,7 @@
 #include "deltamesh/errors.hpp"
 #include "deltamesh/metric.hpp"
 #include "deltamesh/predicates.hpp"
+#include "mesh/editor.hpp"
 
 namespace deltamesh {
 
@@ -358,7 +359,8 @@ class MetricAdapter {
       flags[i] = m_.edge_flags(dead[i].hw) | m_.edge_flags(ve);
       markers[i] = v_seg ? m_.edge_marker(ve) : m_.edge_marker(dead[i].hw);
     }
-    std::vector<VertexId>& tv = m_.tri_v_mut();
+    detail::MeshEditor ed(m_);
+    std::vector<VertexId>& tv = ed.triangle_vertices();
     for (HalfEdgeId o : live) tv[o] = w;
     for (int i = 0; i < nd; ++i) m_.remove_triangle(dead[i].t);
     for (int i = 0; i < nd; ++i) {
@@ -366,7 +368,7 @@ class MetricAdapter {
       if (d.tw_ != kNone) {
         m_.link(d.tv, d.tw_);
       } else {
-        m_.twin_mut()[d.tv] = kNone;
+        ed.twins()[d.tv] = kNone;
       }
       m_.set_edge_flags(d.tv, flags[i]);
       m_.set_edge_marker(d.tv, markers[i]);
@@ -457,7 +459,7 @@ class MetricAdapter {
         }
         // The worst never drops; the worst or the mean must rise.
         if (!(new_q >= old_q && (new_q > kGain * old_q || new_sum > kGain * old_sum))) continue;
-        m_.points_mut()[v] = np;
+        detail::MeshEditor(m_).points()[v] = np;
         met_[v] = nm;
         lg_[v] = nl;
         ++moves;
