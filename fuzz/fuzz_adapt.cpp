@@ -16,7 +16,9 @@
 // not add up; triangle or constrained-edge counts that do not match the
 // removals; the domain's area or the constrained length per marker changed;
 // vertices removed when none was removable; more Steiner points than the
-// budget.
+// budget. With f3's bit 6, an anisotropic step follows (fuzz_adapt_metric.hpp:
+// metrics of aspect ratio up to 1:10^4, rotating directions, tensors that
+// are not metrics rejected with an InputError).
 #include <fuzzer/FuzzedDataProvider.h>
 
 #include <algorithm>
@@ -37,6 +39,7 @@
 #include "deltamesh/refine.hpp"
 #include "deltamesh/triangulate.hpp"
 #include "deltamesh/validate.hpp"
+#include "fuzz_adapt_metric.hpp"
 #include "fuzz_util.hpp"
 #include "pslg_bytes.hpp"
 
@@ -621,6 +624,12 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       check_step(mesh, b, st.coarsen, cs2, h, st.inserted, input, stage, st.smooth.passes > 0);
       if (cs.opt.renumber) input_points = 0;
     }
+  }
+  // Then, with f3's bit 6, adaptation to an anisotropic metric
+  // (fuzz_adapt_metric.hpp), the input vertices protected while their ids hold.
+  if (f3 & 64) {
+    const bool ids_hold = input_points == g.points.size();
+    fz::metric_step(in, mesh, nothing_carved && ids_hold ? &g : nullptr, ids_hold ? input_points : 0, verbose());
   }
   return 0;
 }

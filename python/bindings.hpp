@@ -152,7 +152,8 @@ py::object triangulate_kw(py::object vertices, py::object segments, py::object h
                         bool markers, bool quiet, bool stats, py::object trace, py::object threads);
 // threads= of both forms: None leaves the plan's (the switches' -t, else 0).
 void apply_threads(Plan& plan, const py::object& threads);
-py::dict adapt_dict(const py::dict& tri, py::object size, const std::string& opts, int smooth);
+py::dict adapt_dict(const py::dict& tri, py::object size, const std::string& opts, int smooth, py::object metric);
+py::dict adapt_metric_dict(const py::dict& tri, py::object metric, const std::string& opts, int smooth);  // metric.cpp
 py::dict check_dict(const py::dict& tri, bool delaunay, bool convex_hull, bool segments);
 py::dict validate_dict(const py::dict& tri, bool delaunay, bool convex_hull, bool segments);
 py::dict quality_dict(const py::dict& tri, double min_angle, double max_area);

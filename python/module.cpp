@@ -138,9 +138,9 @@ centroids (<= 0: no bound there); they refine like max_area.
 stats=True returns (dict, stats). trace=PATH writes every step of the run as
 JSON Lines (docs/trace.md).)");
 
-  m.def("adapt", &adapt_dict, py::arg("mesh"), py::arg("size"), py::arg("opts") = "q", py::kw_only(),
-        py::arg("smooth") = 2,
-        R"(adapt(mesh: dict, size, opts: str = 'q', *, smooth: int = 2) -> dict.
+  m.def("adapt", &adapt_dict, py::arg("mesh"), py::arg("size") = py::none(), py::arg("opts") = "q", py::kw_only(),
+        py::arg("smooth") = 2, py::arg("metric") = py::none(),
+        R"(adapt(mesh: dict, size, opts: str = 'q', *, smooth: int = 2, metric=None) -> dict.
 
 Mesh adaptation (docs/adapt.md): coarsens where the mesh is finer than the
 target edge length and refines where it is coarser, then smooths `smooth`
@@ -150,7 +150,16 @@ function h(x, y) -> target edge length (<= 0: no target there) or an array
 of one size per vertex (interpolated linearly over the mesh, as a TetGen
 .mtr file). opts: refinement switches as for triangulate ('q30', 'a0.01',
 'S1000', 'C'...). The result has triangulate()'s keys; stats['adapt'] holds
-removed, inserted, smoothed, triangles, complete.)");
+removed, inserted, smoothed, triangles, complete.
+
+metric=...: adapt to a metric tensor field instead of a size (anisotropic;
+docs/adapt.md): an (n, 3) array of m11, m12, m22 per vertex (log-Euclidean
+interpolation) or a function (x, y) -> (m11, m12, m22). Edges get metric
+length near 1 (split above sqrt 2, collapse below 1/sqrt 2, swaps and
+smoothing in the metric); refinement switches of opts other than Y, C, Q do
+not apply. stats['adapt'] then holds splits, collapses, swaps, moves,
+edges_within (share of edges of metric length in [1/sqrt 2, sqrt 2]),
+mean_quality, min_quality.)");
   m.def("delaunay", &delaunay_triangles, py::arg("vertices"),
         "Delaunay triangulation of points: the (M, 3) int32 triangles (counter-clockwise) of triangulate({'vertices': "
         "v}).");

@@ -173,7 +173,12 @@ py::object triangulate_dict(const py::dict& tri, const std::string& opts, py::ob
 // segments), then coarsened and refined to the size field (and smoothed).
 // Per-vertex sizes: vertices that inserting the segments adds take the mean
 // of their neighbours' sizes, as with the command line's --adapt.
-py::dict adapt_dict(const py::dict& tri, py::object size, const std::string& opts, int smooth) {
+py::dict adapt_dict(const py::dict& tri, py::object size, const std::string& opts, int smooth, py::object metric) {
+  if (given(metric)) {
+    if (given(size)) throw py::value_error("adapt: give a size or a metric, not both");
+    return adapt_metric_dict(tri, metric, opts, smooth);
+  }
+  if (!given(size)) throw py::value_error("adapt: needs a size (or metric=...)");
   Input in = read_input(arrays_from_dict(tri));
   if (!in.has_triangles) throw py::value_error("adapt: the mesh needs 'triangles' (and 'vertices')");
   const CommandLine cl = parse_switches(opts);

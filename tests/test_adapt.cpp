@@ -483,7 +483,8 @@ TEST_F(AdaptCli, BadMtrFilesAreInputErrors) {
       {sizes(n, "0", 0), "box.1.mtr:2: size 1 of"},
       {sizes(n, "abc", 6), "box.1.mtr:8:"},
       {sizes(n, "0.1 0.2", 6), "box.1.mtr:8: expected one size per line"},
-      {std::to_string(n) + " 3\n", "box.1.mtr:1: the number of sizes per node is 3"},
+      {std::to_string(n) + " 2\n", "box.1.mtr:1: the number of values per node is 2; 1 (an isotropic size) and 3"},
+      {std::to_string(n) + " 3\n", "box.1.mtr:1: header announces"},
       {sizes(n, "", n) + "0.1\n", "box.1.mtr:" + std::to_string(n + 2) + ": unexpected data after"},
   };
   for (const Case& c : cases) {

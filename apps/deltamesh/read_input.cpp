@@ -56,10 +56,17 @@ RunInput read_mesh(Session& s, const std::string& in) {
     const std::string mtr_path = in + ".mtr";
     require_file(mtr_path);
     s.reading(mtr_path);
-    r.vertex_sizes = read_mtr(mtr_path);
-    if (r.vertex_sizes.size() != r.pslg.points.size())
-      throw InputError("has " + std::to_string(r.vertex_sizes.size()) + " sizes but " + node_path + " has " +
-                       std::to_string(r.pslg.points.size()) + " nodes");
+    MtrData mtr = read_mtr_data(mtr_path);
+    const std::size_t count = mtr.values.size() / static_cast<std::size_t>(mtr.per_node);
+    if (count != r.pslg.points.size())
+      throw InputError("has " + std::to_string(count) + (mtr.per_node == 1 ? " sizes" : " metrics") + " but " +
+                       node_path + " has " + std::to_string(r.pslg.points.size()) + " nodes");
+    if (mtr.per_node == 1) {
+      r.vertex_sizes = std::move(mtr.values);
+    } else {
+      for (std::size_t i = 0; i < count; ++i)
+        r.vertex_metrics.push_back({mtr.values[3 * i], mtr.values[3 * i + 1], mtr.values[3 * i + 2]});
+    }
     if (!ele.midside.empty())
       throw InputError("--adapt needs a 3-node mesh; " + ele_path + " has 6-node triangles");
   }

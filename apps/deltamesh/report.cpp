@@ -32,7 +32,9 @@ QualityReport quality(const Session& s, const RunResult& r) {
   q.min_angle_deg = rp.quality ? rp.min_angle.value_or(20.0) : 0.0;
   q.max_area = rp.max_area.value_or(-1.0);
   if (r.refined) q.input_vertices = r.stats.refine.input_vertices;
-  return quality_report(r.mesh, q, r.refined ? &r.stats.refine : nullptr);
+  QualityReport rep = quality_report(r.mesh, q, r.refined ? &r.stats.refine : nullptr);
+  rep.metric = r.metric_fit;
+  return rep;
 }
 
 void write_stats(const Session& s, const RunResult& r) {
@@ -131,6 +133,8 @@ void report(const Session& s, const RunResult& r, const std::vector<std::string>
                              .c_str());
   }
   if (r.adapted) std::fprintf(out, "Adapted: %s\n", r.adapt.summary().c_str());
+  if (r.metric_adapted) std::fprintf(out, "Adapted to the metric: %s\n", r.metric_adapt.summary().c_str());
+  if (r.metric_fit) std::fprintf(out, "Metric fit: %s\n", r.metric_fit->summary().c_str());
   if (r.adapted && r.adapt.smooth.passes) std::fprintf(out, "Smoothed: %s\n", r.adapt.smooth.summary().c_str());
   if (r.smoothed) {
     std::fprintf(out, "Smoothed: %s", r.smooth.summary().c_str());

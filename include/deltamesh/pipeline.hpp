@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "deltamesh/adapt.hpp"
+#include "deltamesh/metric.hpp"
 #include "deltamesh/cdt.hpp"
 #include "deltamesh/domain.hpp"
 #include "deltamesh/insert_segments.hpp"
@@ -120,6 +121,12 @@ struct RunInput {
   // the mean of their neighbours').
   SizeField size;
   std::vector<double> vertex_sizes;
+  // Adapt to a metric instead (metric.hpp's adapt_to_metric): a field, or
+  // one tensor per input vertex (log-Euclidean interpolation over the mesh;
+  // vertices that segment insertion adds take their neighbours' mean).
+  // Refinement switches other than -Y do not apply to it.
+  MetricField metric;
+  std::vector<Metric> vertex_metrics;
 };
 
 // Drops the midpoint nodes of a 6-node mesh (its corners renumbered in
@@ -147,6 +154,10 @@ struct RunResult {
   std::size_t delaunay_flips = 0;                     // before refinement, adaptation or smoothing
   bool adapted = false;
   AdaptStats adapt;
+  // Adapt to a metric: its stats and how the result fits the metric.
+  bool metric_adapted = false;
+  MetricAdaptStats metric_adapt;
+  std::optional<MetricFit> metric_fit;
   // --smooth (Adapt smooths inside adapt(): see adapt.smooth).
   bool smoothed = false;
   SmoothStats smooth;

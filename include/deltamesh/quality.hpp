@@ -8,6 +8,7 @@
 #include <string>
 
 #include "deltamesh/mesh.hpp"
+#include "deltamesh/metric.hpp"
 #include "deltamesh/refine.hpp"
 
 namespace deltamesh {
@@ -55,6 +56,7 @@ struct QualityReport {
   std::size_t below_angle = 0;       // triangles whose smallest angle is below the bound
   std::size_t above_area = 0;        // triangles above their area bound
   std::optional<RefineStats> refine; // why triangles are below the bound, when refinement ran
+  std::optional<MetricFit> metric;   // after adaptation to a metric: edge lengths and quality in it
 
   std::string text() const;
   std::string json() const;  // one line, docs/stats-schema.md

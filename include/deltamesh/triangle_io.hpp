@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "deltamesh/mesh.hpp"
+#include "deltamesh/metric.hpp"
 #include "deltamesh/pslg.hpp"
 
 namespace deltamesh {
@@ -34,9 +35,17 @@ struct EleData {
 EleData read_ele(const std::string& path, int first_index);
 // Per-triangle area bounds of an .area file (negative: no bound).
 std::vector<double> read_area(const std::string& path);
-// Per-vertex target sizes of a TetGen .mtr file: a header '<#nodes> 1'
-// (the second number, the sizes per node, must be 1 when given), then one
-// positive size per line in node order, '#' comments allowed.
+// A TetGen/MMG-style .mtr file: a header '<#nodes> <k>' (k = 1 when left
+// out), then per node, in node order, one line of k values: k = 1, a
+// positive size; k = 3, a metric tensor m11 m12 m22, which must be positive
+// definite and not degenerate (metric.hpp's metric_problem: the error names
+// the line). '#' comments allowed.
+struct MtrData {
+  int per_node = 1;            // 1 or 3
+  std::vector<double> values;  // per_node per node
+};
+MtrData read_mtr_data(const std::string& path);
+// The sizes of a 1-value .mtr file (InputError for metric tensors).
 std::vector<double> read_mtr(const std::string& path);
 
 struct TriangleWriteOptions {

@@ -147,6 +147,7 @@ std::string QualityReport::text() const {
       o << "    at the precision of doubles: " << refine->too_large_precision << "\n";
   }
   if (refine) o << "  " << refine->summary() << "\n";
+  if (metric) o << "  in the metric: " << metric->summary() << "\n";
   return o.str();
 }
 
@@ -204,6 +205,16 @@ std::string QualityReport::json() const {
         {"too_large_precision", s.too_large_precision},
         {"seconds", num(s.seconds)},
     };
+  }
+  if (metric) {
+    const MetricFit& f = *metric;
+    o["metric"] = {{"edges", f.edges},
+                   {"within_sqrt2", num(f.within)},
+                   {"min_length", num(f.min_length)},
+                   {"mean_length", num(f.mean_length)},
+                   {"max_length", num(f.max_length)},
+                   {"min_quality", num(f.min_quality)},
+                   {"mean_quality", num(f.mean_quality)}};
   }
   return o.dump();
 }

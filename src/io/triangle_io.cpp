@@ -481,31 +481,58 @@ std::vector<double> read_area(const std::string& path) {
   return areas;
 }
 
-std::vector<double> read_mtr(const std::string& path) {
+MtrData read_mtr_data(const std::string& path) {
   TextReader r = TextReader::open(path);
   if (!r.next_line())
-    r.fail_at(r.last_line(), "expected the header line '<#nodes> 1', but the file holds no data");
+    r.fail_at(r.last_line(), "expected the header line '<#nodes> <1 or 3>', but the file holds no data");
   const std::size_t header_line = r.line();
   const long long nv = read_count(r, 0, "node count");
+  MtrData d;
   if (r.size() > 1) {
-    const long long k = r.integer(1, [] { return std::string("the number of sizes per node"); });
-    if (k != 1) r.fail("the number of sizes per node is " + str(k) + "; only 1 (an isotropic size) is supported");
+    const long long k = r.integer(1, [] { return std::string("the number of values per node"); });
+    if (k != 1 && k != 3)
+      r.fail("the number of values per node is " + str(k) +
+             "; 1 (an isotropic size) and 3 (a metric tensor m11 m12 m22) are supported");
+    d.per_node = static_cast<int>(k);
   }
-  check_count_fits(r, nv, 1, "nodes");
-  std::vector<double> sizes;
-  sizes.reserve(static_cast<std::size_t>(nv));
+  check_count_fits(r, nv, d.per_node, "nodes");
+  d.values.reserve(static_cast<std::size_t>(nv) * static_cast<std::size_t>(d.per_node));
   for (long long i = 0; i < nv; ++i) {
-    next_entry(r, i, nv, header_line, "node sizes");
-    const std::string which = "size " + str(i + 1) + " of " + str(nv);
-    if (r.size() != 1)
-      r.fail("expected one size per line (" + which + "), found " + str(static_cast<long long>(r.size())) + " fields");
-    const double h = r.finite_number(0, [&] { return which; });
-    if (!(h > 0)) r.fail(which + " is " + std::string(r.token(0)) + "; sizes must be positive");
-    sizes.push_back(h);
+    next_entry(r, i, nv, header_line, d.per_node == 1 ? "node sizes" : "node metrics");
+    if (d.per_node == 1) {
+      const std::string which = "size " + str(i + 1) + " of " + str(nv);
+      if (r.size() != 1)
+        r.fail("expected one size per line (" + which + "), found " + str(static_cast<long long>(r.size())) +
+               " fields");
+      const double h = r.finite_number(0, [&] { return which; });
+      if (!(h > 0)) r.fail(which + " is " + std::string(r.token(0)) + "; sizes must be positive");
+      d.values.push_back(h);
+      continue;
+    }
+    const std::string which = "metric " + str(i + 1) + " of " + str(nv);
+    if (r.size() != 3)
+      r.fail("expected three values m11 m12 m22 per line (" + which + "), found " +
+             str(static_cast<long long>(r.size())) + " fields");
+    Metric m;
+    m.m11 = r.finite_number(0, [&] { return "m11 of " + which; });
+    m.m12 = r.finite_number(1, [&] { return "m12 of " + which; });
+    m.m22 = r.finite_number(2, [&] { return "m22 of " + which; });
+    const std::string why = metric_problem(m);
+    if (!why.empty()) r.fail(which + " (" + std::string(r.token(0)) + " " + std::string(r.token(1)) + " " +
+                             std::string(r.token(2)) + ") " + why);
+    d.values.insert(d.values.end(), {m.m11, m.m12, m.m22});
   }
-  reject_trailing_data(r, "the " + plural(nv, "node size", "node sizes") + " announced on line " +
-                              std::to_string(header_line));
-  return sizes;
+  reject_trailing_data(r, "the " + plural(nv, d.per_node == 1 ? "node size" : "node metric",
+                                          d.per_node == 1 ? "node sizes" : "node metrics") +
+                              " announced on line " + std::to_string(header_line));
+  return d;
+}
+
+std::vector<double> read_mtr(const std::string& path) {
+  MtrData d = read_mtr_data(path);
+  if (d.per_node != 1)
+    throw InputError(path + ": holds metric tensors (3 values per node), not sizes: read it with read_mtr_data");
+  return std::move(d.values);
 }
 
 // ---------------------------------------------------------------------------

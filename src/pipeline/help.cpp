@@ -27,7 +27,11 @@ Input:
   --adapt  (implies -r) adapt the mesh to the target edge lengths of FILE.mtr
       (TetGen's format: '<#nodes> 1', then one size per node): coarsen where
       edges are shorter than the size, refine where longer (with -q: quality),
-      then smooth (2 passes; --smooth=N sets them, --smooth=0 none)
+      then smooth (2 passes; --smooth=N sets them, --smooth=0 none).
+      '<#nodes> 3' and m11 m12 m22 per node: a metric tensor field instead,
+      anisotropic adaptation (split, collapse, swap, smooth in the metric;
+      -q and -a do not apply, -Y keeps segments whole); -V and --stats=json
+      report the edge lengths and quality in the metric
   --smooth[=N]  N passes (default 3) of vertex smoothing after meshing or
       refinement: free interior vertices move towards the centroid of their
       neighbours when the smallest angle around them does not drop (nor -a's

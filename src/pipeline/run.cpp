@@ -40,7 +40,7 @@ RefineOptions RefinementPlan::options() const {
 
 std::size_t drop_midside_nodes(RunInput& in) {
   if (in.midside.empty()) return 0;
-  if (!in.vertex_sizes.empty())
+  if (!in.vertex_sizes.empty() || !in.vertex_metrics.empty())
     throw InputError("adaptation to per-vertex sizes needs a 3-node mesh; the triangles given have 6 nodes");
   const std::size_t dropped = drop_midpoint_nodes(in.pslg, in.triangles, in.midside);
   in.midside.clear();
@@ -134,6 +134,44 @@ std::vector<double> vertex_sizes(const Mesh& mesh, const std::vector<double>& gi
   return sizes;
 }
 
+// One metric per mesh vertex: the input's, and for vertices appended since
+// their neighbours' log-Euclidean mean (as vertex_sizes).
+std::vector<Metric> vertex_metrics(const Mesh& mesh, const std::vector<Metric>& given) {
+  std::vector<Metric> out = given;
+  const std::size_t n = given.size();
+  std::vector<Metric> near;
+  std::vector<double> w;
+  for (VertexId v = static_cast<VertexId>(n); v < mesh.num_vertices(); ++v) {
+    near.clear();
+    mesh.for_each_out_edge(v, [&](HalfEdgeId e) {
+      if (mesh.dest(e) < n) near.push_back(given[mesh.dest(e)]);
+      return true;
+    });
+    if (near.empty()) near = given;
+    w.assign(near.size(), 1.0 / double(near.size()));
+    out.push_back(near.empty() ? Metric{} : log_euclidean_mean(near, w));
+  }
+  return out;
+}
+
+// Adapt to a metric field (split, collapse, swap, smooth in the metric).
+void adapt_mesh_to_metric(const Plan& plan, RunInput& in, RunResult& res) {
+  Mesh& mesh = res.mesh;
+  MetricField field = in.metric;
+  if (!field) {
+    if (in.vertex_metrics.size() != in.pslg.points.size())
+      throw InputError("has " + std::to_string(in.vertex_metrics.size()) + " metrics for " +
+                       std::to_string(in.pslg.points.size()) + " vertices");
+    field = metric_field_from_vertices(mesh, vertex_metrics(mesh, in.vertex_metrics));
+  }
+  MetricAdaptOptions mo;
+  mo.split_segments = plan.refine.no_boundary_steiner == 0;
+  if (plan.smooth >= 0) mo.smooth_passes = plan.smooth;
+  res.metric_adapt = adapt_to_metric(mesh, field, mo);
+  res.metric_fit = metric_fit(mesh, field);
+  res.metric_adapted = true;
+}
+
 // Meshes: rebuilt, then adapted, refined or (for smoothing) flipped to a CDT.
 void process_mesh(const Plan& plan, RunInput& in, RunResult& res, Phases& phases) {
   rebuild_mesh(plan, in, res, phases);
@@ -141,7 +179,12 @@ void process_mesh(const Plan& plan, RunInput& in, RunResult& res, Phases& phases
   res.read_triangles = res.mesh.num_triangles();
   Mesh& mesh = res.mesh;
   if (plan.trace) trace_rebuilt_mesh(*plan.trace, mesh);
-  if (plan.input == InputKind::Adapt) {
+  if (plan.input == InputKind::Adapt && (in.metric || !in.vertex_metrics.empty())) {
+    const auto t = Clock::now();
+    adapt_mesh_to_metric(plan, in, res);
+    finish_vertex_markers(mesh);
+    phases.add("adapt to the metric (split, collapse, swap, smooth)", t);
+  } else if (plan.input == InputKind::Adapt) {
     // Sizes at the vertices of the mesh as rebuilt, then the CDT flips
     // refinement needs, coarsening and refinement to them.
     const auto t = Clock::now();

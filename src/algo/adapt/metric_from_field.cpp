@@ -1,0 +1,190 @@
+// Metrics from a P1 field: Hessian recovery by a least-squares quadratic
+// fit on vertex patches, scaling to a complexity or a tolerance, and
+// gradation control.
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <string>
+
+#include "algo/adapt/common.hpp"
+#include "algo/adapt/metric_math.hpp"
+#include "deltamesh/errors.hpp"
+#include "deltamesh/metric.hpp"
+
+namespace deltamesh {
+
+namespace {
+
+constexpr std::size_t kMinPatch = 9;  // points for a well-posed fit of 6 coefficients
+constexpr int kMaxRings = 4;
+
+// Least squares for c in sum_i (phi_i . c - u_i)^2, by the normal equations
+// with partial pivoting (6 unknowns, coordinates scaled to O(1)). Returns
+// false when the patch cannot determine a quadratic (e.g. collinear).
+bool solve6(std::array<std::array<double, 7>, 6>& a, std::array<double, 6>& c) {
+  double scale = 0;
+  for (int i = 0; i < 6; ++i) scale = std::max(scale, std::fabs(a[i][i]));
+  if (!(scale > 0)) return false;
+  for (int col = 0; col < 6; ++col) {
+    int piv = col;
+    for (int r = col + 1; r < 6; ++r)
+      if (std::fabs(a[r][col]) > std::fabs(a[piv][col])) piv = r;
+    if (!(std::fabs(a[piv][col]) > 1e-12 * scale)) return false;
+    std::swap(a[piv], a[col]);
+    for (int r = col + 1; r < 6; ++r) {
+      const double f = a[r][col] / a[col][col];
+      for (int k = col; k < 7; ++k) a[r][k] -= f * a[col][k];
+    }
+  }
+  for (int r = 5; r >= 0; --r) {
+    double s = a[r][6];
+    for (int k = r + 1; k < 6; ++k) s -= a[r][k] * c[k];
+    c[r] = s / a[r][r];
+  }
+  return true;
+}
+
+}  // namespace
+
+std::vector<Metric> recover_hessian(const Mesh& mesh, std::span<const double> values) {
+  const std::size_t n = mesh.num_vertices();
+  if (values.size() != n)
+    throw InputError(std::to_string(values.size()) + " values for a mesh of " + std::to_string(n) + " vertices");
+  for (std::size_t i = 0; i < n; ++i)
+    if (!std::isfinite(values[i])) throw InputError("the value at vertex " + std::to_string(i) + " is not finite", i);
+  std::vector<Metric> hess(n, Metric{0, 0, 0});
+  std::vector<std::uint32_t> seen(n, 0);
+  std::uint32_t stamp = 0;
+  std::vector<VertexId> patch, ring, next, nbr;
+  std::vector<HalfEdgeId> scratch;
+  for (VertexId v = 0; v < n; ++v) {
+    if (mesh.out_edge(v) == kNone) continue;
+    ++stamp;
+    patch.assign(1, v);
+    seen[v] = stamp;
+    ring.assign(1, v);
+    for (int r = 0; r < kMaxRings && (r < 2 || patch.size() < kMinPatch) && !ring.empty(); ++r) {
+      next.clear();
+      for (VertexId w : ring) {
+        adaptation::neighbors_of(mesh, w, scratch, nbr);
+        for (VertexId u : nbr)
+          if (seen[u] != stamp) {
+            seen[u] = stamp;
+            next.push_back(u);
+            patch.push_back(u);
+          }
+      }
+      ring.swap(next);
+    }
+    const Point& o = mesh.point(v);
+    double hs = 0;
+    for (VertexId w : patch) hs = std::max(hs, adaptation::dist(o, mesh.point(w)));
+    if (!(hs > 0)) continue;
+    std::array<std::array<double, 7>, 6> a{};
+    for (VertexId w : patch) {
+      const double x = (mesh.point(w).x - o.x) / hs, y = (mesh.point(w).y - o.y) / hs;
+      const std::array<double, 6> phi{1, x, y, 0.5 * x * x, x * y, 0.5 * y * y};
+      for (int i = 0; i < 6; ++i) {
+        for (int k = 0; k < 6; ++k) a[i][k] += phi[i] * phi[k];
+        a[i][6] += phi[i] * values[w];
+      }
+    }
+    std::array<double, 6> c{};
+    if (!solve6(a, c)) continue;
+    const double s = 1 / (hs * hs);
+    hess[v] = {c[3] * s, c[4] * s, c[5] * s};
+  }
+  return hess;
+}
+
+std::vector<Metric> metric_from_hessian(const Mesh& mesh, std::span<const Metric> hessians,
+                                        const MetricScaling& sc) {
+  const std::size_t n = mesh.num_vertices();
+  if (hessians.size() != n)
+    throw InputError(std::to_string(hessians.size()) + " Hessians for a mesh of " + std::to_string(n) + " vertices");
+  if (!(sc.h_min > 0) || !(sc.h_max >= sc.h_min) || !(sc.max_aspect >= 1))
+    throw InputError("metric scaling needs 0 < h_min <= h_max and max_aspect >= 1");
+  if (sc.complexity <= 0 && !(sc.tolerance > 0)) throw InputError("metric scaling needs a complexity or a tolerance > 0");
+  const double lmin = 1 / (sc.h_max * sc.h_max), lmax = 1 / (sc.h_min * sc.h_min);
+  // |H| with its eigenvalues floored (a flat field asks for h_max), then
+  // the local Lp factor det^(-1/(2p+2)).
+  std::vector<Metric> m(n, isotropic_metric(sc.h_max));
+  for (std::size_t i = 0; i < n; ++i) {
+    const Metric& h = hessians[i];
+    if (!std::isfinite(h.m11) || !std::isfinite(h.m12) || !std::isfinite(h.m22))
+      throw InputError("the Hessian at vertex " + std::to_string(i) + " has a non-finite entry", i);
+    const Eigen2 e = eigen(h);
+    const double floor = sc.complexity > 0 ? 1e-12 : lmin * sc.tolerance * 4.5;
+    const double l1 = std::max(std::fabs(e.l1), floor), l2 = std::max(std::fabs(e.l2), floor);
+    double k = 1;
+    if (sc.complexity > 0 && sc.p > 0) k = std::pow(l1 * l2, -1 / (2 * sc.p + 2));
+    m[i] = from_eigen(k * l1, k * l2, e.c, e.s);
+  }
+  double global = 0;
+  if (sc.complexity > 0) {
+    // N = D * integral of sqrt(det M) (P1 quadrature of the vertex values).
+    double integral = 0;
+    for (TriId t = 0; t < mesh.num_triangle_slots(); ++t) {
+      if (!mesh.is_real(t)) continue;
+      const auto v = mesh.triangle(t);
+      const Point &a = mesh.point(v[0]), &b = mesh.point(v[1]), &c = mesh.point(v[2]);
+      const double area = 0.5 * std::fabs((b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x));
+      double s = 0;
+      for (VertexId w : v) s += std::sqrt(std::max(0.0, m[w].m11 * m[w].m22 - m[w].m12 * m[w].m12));
+      integral += area * s / 3;
+    }
+    if (!(integral > 0)) throw InputError("metric scaling to a complexity needs a mesh with triangles");
+    global = sc.complexity / integral;
+  } else {
+    global = 2.0 / 9.0 / sc.tolerance;
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    const Eigen2 e = eigen(adaptation::scaled(m[i], global));
+    double l2 = std::clamp(e.l2, lmin, lmax);
+    double l1 = std::clamp(e.l1, lmin, lmax);
+    l1 = std::max(l1, l2 / (sc.max_aspect * sc.max_aspect));
+    m[i] = from_eigen(l1, l2, e.c, e.s);
+  }
+  return m;
+}
+
+int gradate_metric(const Mesh& mesh, std::vector<Metric>& m, double beta) {
+  if (m.size() != mesh.num_vertices())
+    throw InputError(std::to_string(m.size()) + " metrics for a mesh of " + std::to_string(mesh.num_vertices()) +
+                     " vertices");
+  if (!(beta > 1) || !std::isfinite(beta)) throw InputError("the gradation must be a number above 1");
+  for (std::size_t i = 0; i < m.size(); ++i)
+    if (mesh.out_edge(static_cast<VertexId>(i)) != kNone) {
+      const std::string why = metric_problem(m[i]);
+      if (!why.empty()) throw InputError("the metric tensor of vertex " + std::to_string(i) + " " + why, i);
+    }
+  const double lnb = std::log(beta);
+  // Grows M_from along the edge to `to` and intersects M_to with it.
+  const auto limit = [&](VertexId from, VertexId to) {
+    const Point &p = mesh.point(from), &q = mesh.point(to);
+    const double l = metric_length(m[from], q.x - p.x, q.y - p.y);
+    const double eta = 1 + l * lnb;
+    const Metric grown = adaptation::scaled(m[from], 1 / (eta * eta));
+    // Relative to M_to in its own directions, so a change across a thin
+    // direction counts as much as along a long one.
+    if (adaptation::excess(m[to], grown) <= 1 + 1e-3) return false;
+    m[to] = intersect(m[to], grown);
+    return true;
+  };
+  int sweeps = 0;
+  for (; sweeps < 50; ++sweeps) {
+    bool changed = false;
+    for (HalfEdgeId e = 0; e < mesh.triangle_vertices().size(); ++e) {
+      if (!mesh.is_real(tri_of(e))) continue;
+      const HalfEdgeId tw = mesh.twin(e);
+      if (tw != kNone && tw < e) continue;
+      const VertexId a = mesh.origin(e), b = mesh.dest(e);
+      changed |= limit(a, b);
+      changed |= limit(b, a);
+    }
+    if (!changed) break;
+  }
+  return sweeps;
+}
+
+}  // namespace deltamesh
