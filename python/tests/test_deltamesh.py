@@ -312,6 +312,42 @@ class PointSets(unittest.TestCase):
         self.assertTrue((vor["ray_directions"][~rays] == 0).all())
 
 
+class UnmetBounds(unittest.TestCase):
+    """One rule (docs/robustness.md, exit codes): an unmet angle or size bound
+    makes the result incomplete, with the counts and reasons, as the CLI's exit 3."""
+
+    def test_y_forbidding_splits_is_incomplete_with_the_reason(self):
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always")
+            mesh = deltamesh.triangulate(square_with_hole(), "pq33Y")
+        deltamesh.validate(mesh)
+        st, r = mesh["stats"], mesh["stats"]["refine"]
+        below = (min_angles(mesh) < 33).sum()
+        if below == 0:
+            self.skipTest("-Y met the bound here")
+        self.assertFalse(st["complete"])
+        self.assertGreater(r["below_segment_protected"], 0)
+        self.assertIn("-Y/-YY forbids", r["unmet"])
+        self.assertTrue(any("refinement stopped" in str(w.message) for w in caught))
+        ok = quiet_triangulate(square_with_hole(), "pq33")
+        self.assertTrue(ok["stats"]["complete"])
+        self.assertEqual(ok["stats"]["refine"]["unmet"], "")
+
+    def test_any_scale_gives_the_same_mesh(self):
+        base = quiet_triangulate(square_with_hole(), "pq30")
+        for k in (-1000, -60, 60, 1000):
+            shape = square_with_hole()
+            s = math.ldexp(1.0, k)
+            shape["vertices"] = np.asarray(shape["vertices"], dtype=float) * s
+            shape["holes"] = np.asarray(shape["holes"], dtype=float) * s
+            mesh = quiet_triangulate(shape, "pq30")
+            np.testing.assert_array_equal(mesh["vertices"], base["vertices"] * s)
+            np.testing.assert_array_equal(mesh["triangles"], base["triangles"])
+            q = deltamesh.quality(mesh, min_angle=30)
+            self.assertEqual(q["below_angle"], 0)
+            self.assertAlmostEqual(q["min_angle"], deltamesh.quality(base)["min_angle"], places=12)
+
+
 class RandomInputs(unittest.TestCase):
     def test_seeded_random_pslgs(self):
         """Random points with random (crossing) segments on a coarse grid, so that

@@ -60,7 +60,14 @@ QualityReport quality_report(const Mesh& mesh, const QualityOptions& opt, const 
     const double hi = std::max({angles[0], angles[1], angles[2]});
     for (double ang : angles) r.angle_histogram[std::min<std::size_t>(17, static_cast<std::size_t>(ang / 10.0))]++;
     const double l2[3] = {squared_distance(s[0], s[1]), squared_distance(s[1], s[2]), squared_distance(s[2], s[0])};
-    const double cross = (s[1].x - s[0].x) * (s[2].y - s[0].y) - (s[1].y - s[0].y) * (s[2].x - s[0].x);
+    // Twice the area from an end of the shortest edge, with the shortest
+    // edge chosen as the refinement chooses it (see its eval()).
+    double lo2 = l2[0], o1 = l2[1], o2 = l2[2];
+    int sh = 0;
+    if (l2[1] < lo2) lo2 = l2[1], o1 = l2[2], o2 = l2[0], sh = 1;
+    if (l2[2] < lo2) lo2 = l2[2], o1 = l2[0], o2 = l2[1], sh = 2;
+    const Point &P = s[sh], &Q = s[(sh + 1) % 3], &R = s[(sh + 2) % 3];
+    const double cross = (Q.x - P.x) * (R.y - P.y) - (Q.y - P.y) * (R.x - P.x);
     const double shortest_s = std::sqrt(std::min({l2[0], l2[1], l2[2]}));
     const double longest_s = std::sqrt(std::max({l2[0], l2[1], l2[2]}));
     const double area_s = 0.5 * std::fabs(cross);
@@ -94,10 +101,7 @@ QualityReport quality_report(const Mesh& mesh, const QualityOptions& opt, const 
     if (opt.min_angle_deg > 0) {
       const double rad = opt.min_angle_deg * std::numbers::pi / 180.0;
       const double sin2 = std::sin(rad) * std::sin(rad);
-      // The two edges beside the shortest, chosen as the refinement does.
-      double lo2 = l2[0], o1 = l2[1], o2 = l2[2];
-      if (l2[1] < lo2) lo2 = l2[1], o1 = l2[2], o2 = l2[0];
-      if (l2[2] < lo2) lo2 = l2[2], o1 = l2[0], o2 = l2[1];
+      // o1, o2: the two edges beside the shortest, as the refinement takes them.
       if (cross * cross < sin2 * (o1 * o2)) ++r.below_angle;
     }
     double bound = opt.max_area;

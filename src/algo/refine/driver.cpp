@@ -278,7 +278,10 @@ void Refiner::decide(TriId t, Decision& d) {
     d.reason = Reason::SmallAngle;
     return;
   }
-  if (below_precision_floor(ev.shortest2, pts_[tv_[3 * t]], pts_[tv_[3 * t + 1]], pts_[tv_[3 * t + 2]])) {
+  // The new point goes near the shortest edge (an off-centre, or a split of
+  // it): the precision that matters is at its ends.
+  const HalfEdgeId se = 3 * t + ev.shortest;
+  if (below_precision_floor(ev.shortest2, pts_[tv_[se]], pts_[tv_[next_edge(se)]], pts_[tv_[se]])) {
     d.reason = Reason::Precision;
     return;
   }

@@ -129,10 +129,10 @@ class Refiner {
     return eval(t, pts_[tv_[e]], pts_[tv_[e + 1]], pts_[tv_[e + 2]]);
   }
   void consider(TriId t);
-  // Precision, measured where the triangle is (not over the domain): an
-  // edge of squared length len2 between corners of magnitude up to that of
-  // a, b, c is too short to split when below kPrecisionFloor of it; a
-  // point on it would lie within 2^12 ulps of its ends.
+  // Precision, measured where the edge is (not over the domain): an edge
+  // of squared length len2 whose ends have coordinates of magnitude up to
+  // that of a, b, c is too short to split when below kPrecisionFloor of it;
+  // a point on or beside it would lie within 2^12 ulps of its ends.
   static bool below_precision_floor(double len2, const Point& a, const Point& b, const Point& c) {
     const double mag = std::max({std::fabs(a.x), std::fabs(a.y), std::fabs(b.x), std::fabs(b.y), std::fabs(c.x),
                                  std::fabs(c.y)}) *
