@@ -153,16 +153,24 @@ TEST(Scale, EveryFiniteMagnitudeIsAccepted) {
   }
   bad.points[2] = {INFINITY, 0};
   EXPECT_THROW(mesh("-p", bad), InputError);
-  // A coordinate more than 2^200 below the largest cannot be told apart
-  // from 0 by the exact predicates next to it: refused, naming the point.
+  // A coordinate about 2^400 below the largest cannot be told apart from 0
+  // by the exact predicates next to it: refused, naming the point.
   bad.points = {{0, 0}, {1, 0}, {0, 1}, {1e-300, 0.5}};
   try {
     mesh("-p", bad);
     ADD_FAILURE() << "a 2^-997 coordinate beside 1 accepted";
   } catch (const InputError& e) {
     EXPECT_EQ(e.index(), 3u);
-    EXPECT_NE(std::string(e.what()).find("2^200"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("2^400"), std::string::npos) << e.what();
   }
+  // Up to that ratio the frame is raised so both ends fit (2^-200 and 2^200
+  // in one input, as the predicates' own range always allowed).
+  Pslg wide;
+  wide.points = {{0, 0}, {0x1p200, 0}, {0, 0x1p200}, {0x1p-200, 0x1p-200}, {-0x1p200, -0x1p-200}};
+  const RunResult w = mesh("", wide);
+  expect_valid(w.mesh);  // in the predicates' own range: checked as is
+  EXPECT_GE(w.mesh.num_triangles(), 3u);
+  for (VertexId v = 0; v < wide.points.size(); ++v) EXPECT_EQ(w.mesh.point(v), wide.points[v]);
 }
 
 // The cases: a 1e-12 square in [-1, 1]^2 at -q20 (Triangle: 362

@@ -144,10 +144,11 @@ struct RefineOptions {
 };
 
 struct RefineStats {
-  // False when a budget or the time limit stopped refinement, or when
-  // triangles are left above their size bound (too_large); the mesh is valid
-  // either way. Triangles left below the angle bound for the reasons counted
-  // below do not make it incomplete.
+  // False when a bound is not met (one rule, docs/robustness.md): a budget
+  // or the time limit stopped refinement, triangles are left above their
+  // size bound (too_large), or below the angle bound other than in small
+  // input angles (below_segment_protected, below_precision). The mesh is
+  // valid either way; unmet() says why in words.
   bool complete = true;
   bool budget_exhausted = false;
   bool time_exhausted = false;

@@ -20,6 +20,12 @@ double scale_positive(double v, int e) {
   return s > 0 ? s : std::numeric_limits<double>::denorm_min();
 }
 
+double largest(std::span<const Point> points) {
+  double m = 0;
+  for (const Point& p : points) m = std::max({m, std::fabs(p.x), std::fabs(p.y)});
+  return m;
+}
+
 std::string show(double v) {
   char buf[40];
   std::snprintf(buf, sizeof buf, "%.17g", v);
@@ -47,7 +53,7 @@ std::function<double(double, double)> Frame::length_field_to(std::function<doubl
 }
 
 Frame frame_for(std::span<const Point> points) {
-  double m = 0;
+  double m = 0, lo = INFINITY;  // largest, and smallest nonzero, magnitude
   for (std::size_t i = 0; i < points.size(); ++i) {
     const Point& p = points[i];
     if (!std::isfinite(p.x) || !std::isfinite(p.y)) {
@@ -57,13 +63,22 @@ Frame frame_for(std::span<const Point> points) {
                            (std::isnan(v) ? "NaN" : "infinite"),
                        i);
     }
-    m = std::max({m, std::fabs(p.x), std::fabs(p.y)});
+    for (const double v : {std::fabs(p.x), std::fabs(p.y)}) {
+      m = std::max(m, v);
+      if (v > 0) lo = std::min(lo, v);
+    }
   }
   Frame f;
   if (m == 0) return f;
-  int e = 0;
+  int e = 0, elo = 0;
   std::frexp(m, &e);  // m = g 2^e, g in [1/2, 1)
-  f.k = -e;
+  std::frexp(lo, &elo);
+  // The largest magnitude in [1/2, 1), where every measure is safe; raised
+  // (up to the predicates' 2^200) only as far as the smallest nonzero one
+  // needs to reach their 2^-200.
+  int highest = 200 - e;  // m 2^highest < 2^200; one more when m is a power of two
+  if (std::ldexp(m, highest + 1) <= kMaxCoordinate) ++highest;
+  f.k = std::min(std::max(-e, -199 - elo), highest);
   return f;
 }
 
@@ -75,10 +90,9 @@ void scale_vertices(const Frame& f, std::vector<Point>& points) {
       const double v = c ? p.y : p.x, s = c ? q.y : q.x;
       if (v != 0 && std::fabs(s) < kMinCoordinate)
         throw InputError(std::string("coordinate ") + (c ? "y" : "x") + " of point " + std::to_string(i) + " (" +
-                             show(v) + ") is nonzero but more than 2^200 times smaller than the largest coordinate "
-                             "magnitude (" + show(std::ldexp(1.0, -f.k - 1)) +
-                             " or more): the exact predicates resolve coordinates within a ratio of 2^200 "
-                             "(about 1.6e60) of the largest",
+                             show(v) + ") is nonzero but too small beside the largest coordinate magnitude (" + show(largest(points)) +
+                             "): the exact predicates resolve nonzero coordinates within a ratio of about 2^400 "
+                             "(1e120) of the largest",
                          i);
     }
     p = q;

@@ -2,7 +2,8 @@
 // (internal; docs/robustness.md "Any finite coordinates").
 //
 // Every coordinate is multiplied by 2^k, k chosen so the largest magnitude
-// lies in [1/2, 1). Multiplying a double by a power of two is exact unless
+// lies in [1/2, 1) (or higher, up to 2^200, when the smallest nonzero one
+// would otherwise fall below the predicates' 2^-200). Multiplying a double by a power of two is exact unless
 // the result leaves the normal range, so the mesh is built on exactly the
 // input scaled, and scaling back returns the input's vertices bit for bit.
 // Lengths scale by 2^k and areas by 2^2k. No translation: adding an offset
@@ -39,8 +40,8 @@ struct Frame {
 Frame frame_for(std::span<const Point> points);
 
 // The vertices scaled into the frame. Throws InputError (naming the point)
-// for a nonzero coordinate below kMinCoordinate once scaled: one more than
-// 2^200 times smaller than the largest, beyond what the exact predicates
+// for a nonzero coordinate below kMinCoordinate once scaled: one about
+// 2^400 times smaller than the largest, beyond what the exact predicates
 // resolve next to it.
 void scale_vertices(const Frame& f, std::vector<Point>& points);
 // Hole and region seeds: scaled, clamped to +-2^100 (they stay outside the
