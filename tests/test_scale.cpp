@@ -287,5 +287,5 @@ TEST(ExitCodes, UnreachablePrecisionIsExitThreeNamingThePlace) {
   const Cli r = run_cli("-pq30 off.poly", {{"off.poly", f.str()}});
   EXPECT_EQ(r.code, 3) << r.err;
   EXPECT_CONTAINS(r.err, "at the precision of doubles");
-  EXPECT_CONTAINS(r.err, "would round onto its neighbours");
+  EXPECT_CONTAINS(r.err, "would round onto its neighbours or out of its cavity");
 }

@@ -281,7 +281,7 @@ void Refiner::decide(TriId t, Decision& d) {
   // The new point goes near the shortest edge (an off-centre, or a split of
   // it): the precision that matters is at its ends.
   const HalfEdgeId se = 3 * t + ev.shortest;
-  if (below_precision_floor(ev.shortest2, pts_[tv_[se]], pts_[tv_[next_edge(se)]], pts_[tv_[se]])) {
+  if (below_precision_floor(ev.shortest2, pts_[tv_[se]], pts_[tv_[next_edge(se)]])) {
     d.reason = Reason::Precision;
     return;
   }

@@ -88,7 +88,7 @@ bool Refiner::splittable(HalfEdgeId e) const {
   const Point& a = pts_[tv_[e]];
   const Point& b = pts_[tv_[next_edge(e)]];
   const Point m = segment_split_point(tv_[e], tv_[next_edge(e)]);
-  return !(m == a || m == b) && !below_precision_floor(dist2(a, b), a, b, a);
+  return !(m == a || m == b) && !below_precision_floor(dist2(a, b), a, b);
 }
 
 // R1's trigger after an insertion: subsegment e (if it is one) is pushed on

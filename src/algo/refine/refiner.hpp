@@ -130,20 +130,19 @@ class Refiner {
   }
   void consider(TriId t);
   // Precision, measured where the edge is (not over the domain): an edge
-  // of squared length len2 whose ends have coordinates of magnitude up to
-  // that of a, b, c is too short to split when below kPrecisionFloor of it;
-  // a point on or beside it would lie within 2^12 ulps of its ends.
-  static bool below_precision_floor(double len2, const Point& a, const Point& b, const Point& c) {
-    const double mag = std::max({std::fabs(a.x), std::fabs(a.y), std::fabs(b.x), std::fabs(b.y), std::fabs(c.x),
-                                 std::fabs(c.y)}) *
+  // ab of squared length len2 is too short to split when below
+  // kPrecisionFloor of the largest coordinate magnitude of a and b; a point
+  // on or beside it would lie within 2^12 ulps of its ends.
+  static bool below_precision_floor(double len2, const Point& a, const Point& b) {
+    const double mag = std::max(std::max(std::fabs(a.x), std::fabs(a.y)), std::max(std::fabs(b.x), std::fabs(b.y))) *
                        kPrecisionFloor;
     return len2 < mag * mag;
   }
   // A new coordinate below the exact predicates' smallest magnitude
   // (kMinCoordinate) is rounded to 0: a move far below the floor above.
   static Point within_predicate_range(Point p) {
-    if (std::fabs(p.x) < kMinCoordinate) p.x = 0.0;
-    if (std::fabs(p.y) < kMinCoordinate) p.y = 0.0;
+    if (std::fabs(p.x) < kMinCoordinate) p.x = std::copysign(0.0, p.x);  // -0 stays -0
+    if (std::fabs(p.y) < kMinCoordinate) p.y = std::copysign(0.0, p.y);
     return p;
   }
   bool alive(const QueueEntry& e) const {

@@ -133,7 +133,8 @@ std::string RefineStats::unmet() const {
   if (below_precision || too_large_precision)
     out << sep << "precision: the worst near (" << precision_x << ", " << precision_y << ") has a shortest edge of "
         << precision_edge << " at coordinates of magnitude " << precision_magnitude
-        << ", where a new vertex would round onto its neighbours (edges below 2^-40 of the magnitude are not split)";
+        << ": a new vertex there would round onto its neighbours or out of its cavity (edges below 2^-40 of their "
+           "coordinates are not split)";
   return out.str();
 }
 
