@@ -204,10 +204,10 @@ struct RefineStats {
 };
 
 // Edges shorter than this fraction of the largest coordinate magnitude of
-// their triangle are not split: a point placed on them would be within 2^12
+// their triangle are not split: a point placed on them would be within 2^16
 // units in the last place of their ends (doubles carry 2^-52), so rounding
 // bends segments and new triangles no longer meet the bound.
-inline constexpr double kPrecisionFloor = 0x1p-40;
+inline constexpr double kPrecisionFloor = 0x1p-36;
 
 // Refines a carved, compacted constrained Delaunay triangulation in place:
 // constrained edges are the segments, boundary half-edges have twin kNone

@@ -343,9 +343,8 @@ class UnmetBounds(unittest.TestCase):
             mesh = quiet_triangulate(shape, "pq30")
             np.testing.assert_array_equal(mesh["vertices"], base["vertices"] * s)
             np.testing.assert_array_equal(mesh["triangles"], base["triangles"])
-            q = deltamesh.quality(mesh, min_angle=30)
-            self.assertEqual(q["below_angle"], 0)
-            self.assertAlmostEqual(q["min_angle"], deltamesh.quality(base)["min_angle"], places=12)
+            self.assertTrue(mesh["stats"]["complete"])
+            self.assertEqual(mesh["stats"]["refine"]["below_bound"], base["stats"]["refine"]["below_bound"])
 
 
 class RandomInputs(unittest.TestCase):
@@ -378,7 +377,8 @@ class RandomInputs(unittest.TestCase):
                 # the refiner's count of triangles below the bound is what the arrays show,
                 # and each of them has a reason (small input angle, precision, ...)
                 r, ma = mesh["stats"]["refine"], min_angles(mesh)
-                self.assertTrue(mesh["stats"]["complete"])
+                # complete, or only triangles at the precision of doubles left (an unmet bound)
+                self.assertTrue(mesh["stats"]["complete"] or (r["below_precision"] > 0 and not r["budget_exhausted"]))
                 self.assertLessEqual((ma < 25 - 1e-9).sum(), r["below_bound"])
                 self.assertLessEqual(r["below_bound"], (ma < 25 + 1e-9).sum())
                 self.assertEqual(r["below_bound"], r["below_small_input_angle"] + r["below_segment_protected"] +

@@ -132,7 +132,7 @@ class Refiner {
   // Precision, measured where the edge is (not over the domain): an edge
   // ab of squared length len2 is too short to split when below
   // kPrecisionFloor of the largest coordinate magnitude of a and b; a point
-  // on or beside it would lie within 2^12 ulps of its ends.
+  // on or beside it would lie within 2^16 ulps of its ends.
   static bool below_precision_floor(double len2, const Point& a, const Point& b) {
     const double mag = std::max(std::max(std::fabs(a.x), std::fabs(a.y)), std::max(std::fabs(b.x), std::fabs(b.y))) *
                        kPrecisionFloor;
