@@ -281,6 +281,13 @@ py::dict refine_stats_dict(const RefineStats& s) {
   d["min_angle_bound"] = s.min_angle_deg;
   d["seconds"] = s.seconds;
   d["summary"] = s.summary();
+  // Why the run is incomplete (the CLI's exit-3 message); "" when complete.
+  d["unmet"] = s.unmet();
+  if (s.below_precision || s.too_large_precision) {
+    d["precision_center"] = py::make_tuple(s.precision_x, s.precision_y);
+    d["precision_edge"] = s.precision_edge;
+    d["precision_magnitude"] = s.precision_magnitude;
+  }
   return d;
 }
 

@@ -148,11 +148,15 @@ TEST_F(Adversarial, LiteralBeyondDoubleRangeIsAParseError) {
                      "'1e400' is out of range (expected the x coordinate of vertex 1)");
 }
 
-TEST_F(Adversarial, HugeCoordinateBeyond2To200IsAnInputError) {
-  // > 2^200: the exact predicates could overflow. The message names the
-  // vertex as the file numbers it, its line, and the limit.
-  expect_input_error("huge.node", "3 2 0 0\n0 0 0\n1 1e61 0\n2 0 1\n", 3, "vertex 1: coordinate x is out of range");
-  expect_input_error("huge2.node", "3 2 0 0\n0 0 0\n1 0 1\n2 0 -1e300\n", 4, "exceeds the supported magnitude");
+TEST_F(Adversarial, CoordinatesTooFarApartInMagnitudeAreAnInputError) {
+  // Any finite magnitude is meshed (run() scales by a power of two), but a
+  // nonzero coordinate about 2^400 below the largest is beyond the exact
+  // predicates beside it. The message names the small point and the ratio.
+  expect_input_error("huge.node", "3 2 0 0\n0 0 0\n1 1e121 0\n2 0 1\n", 0,
+                     "coordinate y of point 2 (1) is nonzero but too small beside the largest");
+  expect_input_error("huge2.node", "3 2 0 0\n0 0 0\n1 0 1\n2 0 -1e300\n", 0, "ratio of about 2^400");
+  write("far.node", "3 2 0 0\n0 0 0\n1 1e300 0\n2 0 1e300\n");
+  EXPECT_EQ(run("-QC far.node").code, kExitOk);
 }
 
 TEST_F(Adversarial, CoordinatesAtTheLimitsOfTheRangeMesh) {
@@ -166,9 +170,12 @@ TEST_F(Adversarial, CoordinatesAtTheLimitsOfTheRangeMesh) {
 }
 
 TEST_F(Adversarial, SubnormalCoordinateIsAnInputError) {
-  expect_input_error("denormal.node", "3 2 0 0\n0 0 0\n1 1 4.9406564584124654e-324\n2 0 1\n", 3,
-                     "vertex 1: coordinate y is out of range");
-  expect_input_error("denormal2.node", "3 2 0 0\n0 0 0\n1 1e-310 0\n2 0 1\n", 3, "below the supported magnitude");
+  expect_input_error("denormal.node", "3 2 0 0\n0 0 0\n1 1 4.9406564584124654e-324\n2 0 1\n", 0,
+                     "coordinate y of point 1 (4.9406564584124654e-324) is nonzero but too small");
+  expect_input_error("denormal2.node", "3 2 0 0\n0 0 0\n1 1e-310 0\n2 0 1\n", 0, "ratio of about 2^400");
+  // Subnormal coordinates alone are a shape at a tiny scale: meshed.
+  write("subnormal.node", "3 2 0 0\n0 0 0\n1 1e-310 0\n2 0 1e-310\n");
+  EXPECT_EQ(run("-QC subnormal.node").code, kExitOk);
   // Negative zero is zero.
   write("negzero.node", "3 2 0 0\n0 -0 -0.0\n1 1 0\n2 0 1\n");
   EXPECT_EQ(run("-QC negzero.node").code, kExitOk);
@@ -582,10 +589,10 @@ TEST_F(Adversarial, MalformedGeoJsonNamesLineAndColumn) {
   r = run("-Q range.geojson");
   EXPECT_EQ(r.code, kExitInput) << r.err;
   EXPECT_CONTAINS(r.err, "number 1e999 is out of range");
-  write("huge.geojson", "{\"type\": \"Polygon\", \"coordinates\": [[[0, 0], [1e100, 0], [0, 1], [0, 0]]]}");
+  write("huge.geojson", "{\"type\": \"Polygon\", \"coordinates\": [[[0, 0], [1e200, 0], [0, 1], [0, 0]]]}");
   r = run("-Q huge.geojson");
   EXPECT_EQ(r.code, kExitInput) << r.err;
-  EXPECT_CONTAINS(r.err, "exceeds the supported magnitude");
+  EXPECT_CONTAINS(r.err, "too small beside the largest");
   // Deeply nested arrays: an error, not a stack overflow.
   write("deep.geojson", "{\"type\": \"Polygon\", \"coordinates\": " + std::string(100000, '[') + "}");
   r = run("-Q deep.geojson");

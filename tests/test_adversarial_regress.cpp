@@ -177,7 +177,7 @@ TEST_F(RegressCli, TrianglesLeftTooLargeAtPrecisionReportedByStatsAndExitCode) {
   std::filesystem::copy_file(regress("refine_area_bound_near_coincident_not_delaunay.poly"), path("a.poly"));
   const dm::test::CliResult r = run("-pc --cdt=lawson -a0.015625 --encroachment=circle -V --stats=json a.poly");
   EXPECT_EQ(r.code, 3) << r.err;
-  const std::regex warning("refinement left [1-9][0-9]* triangles above their size bound \\([1-9][0-9]* at the "
+  const std::regex warning("bounds not met: [1-9][0-9]* triangles above their size bound \\([1-9][0-9]* at the "
                            "precision of doubles\\)");
   EXPECT_TRUE(std::regex_search(r.err, warning)) << r.err;
   EXPECT_NE(r.out.find("\"complete\":false,\"budget_exhausted\":false"), std::string::npos) << r.out;

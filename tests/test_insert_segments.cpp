@@ -359,7 +359,11 @@ TEST(InsertSegments, RandomSegmentsThenRefinement) {
     RefineOptions ro;
     ro.min_angle_deg = 30;
     const RefineStats rs = refine(r.mesh, ro);
-    EXPECT_TRUE(rs.complete);
+    // Complete, or left only triangles at the precision of doubles (rounded
+    // crossings), which the one exit-code rule counts as an unmet bound.
+    EXPECT_TRUE(rs.complete || (!rs.budget_exhausted && !rs.time_exhausted && rs.too_large == 0 &&
+                                rs.below_bound == rs.below_small_input_angle + rs.below_precision))
+        << rs.summary();
     expect_valid(r.mesh, true, all);
   }
   // The test means something: both kinds occurred, and crossings added vertices.

@@ -63,7 +63,11 @@ void run_corpus(dm::EncroachmentRule rule, double max_total_ratio, bool strict) 
     opt.min_angle_deg = r.q;
     opt.encroachment = rule;
     const dm::RefineStats st = dm::refine(mesh, opt);
-    EXPECT_TRUE(st.complete) << st.summary();
+    // Complete, or (non-strict configurations) left only triangles at the
+    // precision of doubles, an unmet bound under the one exit-code rule.
+    EXPECT_TRUE(st.complete || (!strict && !st.budget_exhausted && !st.time_exhausted && st.too_large == 0 &&
+                                st.below_bound == st.below_small_input_angle + st.below_precision))
+        << st.summary();
     const dm::CheckReport rep = dm::check(mesh, {.convex_hull = false});
     // (A vertex where two holes touch fails the validator's one-fan rule
     // already in the CDT; refinement must not add problems elsewhere.)

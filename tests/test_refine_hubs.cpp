@@ -367,7 +367,9 @@ TEST(HubsLimit, BunchesWithSpreadLengths) {
     dm::test::expect_valid(mesh, false);
     EXPECT_LE(st.steiner_points, o.max_steiner);
     if (q <= 30) {
-      EXPECT_TRUE(st.complete);
+      // Complete but for triangles at the precision of doubles (which make a
+      // run incomplete since the one exit-code rule): no budget stopped it.
+      EXPECT_TRUE(st.complete || (!st.budget_exhausted && !st.time_exhausted && st.below_precision > 0));
       EXPECT_EQ(st.below_bound, st.below_small_input_angle + st.below_precision);
     }
   }

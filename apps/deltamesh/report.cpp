@@ -125,12 +125,7 @@ void report(const Session& s, const RunResult& r, const std::vector<std::string>
     else if (refine_stats.budget_exhausted || refine_stats.time_exhausted)
       std::fprintf(stderr, "deltamesh: warning: refinement stopped by its budget before reaching the requested quality\n");
     else if (!refine_stats.complete)
-      std::fprintf(stderr, "deltamesh: warning: refinement left %zu triangles above their size bound%s\n",
-                   refine_stats.too_large,
-                   refine_stats.too_large_precision == 0
-                       ? ""
-                       : (" (" + std::to_string(refine_stats.too_large_precision) + " at the precision of doubles)")
-                             .c_str());
+      std::fprintf(stderr, "deltamesh: warning: bounds not met: %s\n", refine_stats.unmet().c_str());
   }
   if (r.adapted) std::fprintf(out, "Adapted: %s\n", r.adapt.summary().c_str());
   if (r.metric_adapted) std::fprintf(out, "Adapted to the metric: %s\n", r.metric_adapt.summary().c_str());

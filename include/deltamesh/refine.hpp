@@ -154,10 +154,11 @@ struct RefineOptions {
 };
 
 struct RefineStats {
-  // False when a budget or the time limit stopped refinement, or when
-  // triangles are left above their size bound (too_large); the mesh is valid
-  // either way. Triangles left below the angle bound for the reasons counted
-  // below do not make it incomplete.
+  // False when a bound is not met (one rule, docs/robustness.md): a budget
+  // or the time limit stopped refinement, triangles are left above their
+  // size bound (too_large), or below the angle bound other than in small
+  // input angles (below_segment_protected, below_precision). The mesh is
+  // valid either way; unmet() says why in words.
   bool complete = true;
   bool budget_exhausted = false;
   bool time_exhausted = false;
@@ -199,8 +200,24 @@ struct RefineStats {
   double seconds = 0.0;
   std::size_t peak_queue = 0;  // largest number of queued bad triangles
 
+  // Where the worst triangle left at the precision of doubles is (its
+  // centroid), its shortest edge and the largest coordinate magnitude of its
+  // corners: below kPrecisionFloor of that magnitude no new vertex is
+  // distinct from its neighbours (valid when below_precision or
+  // too_large_precision is nonzero).
+  double precision_x = 0.0, precision_y = 0.0, precision_edge = 0.0, precision_magnitude = 0.0;
+
   std::string summary() const;
+  // Why the run is incomplete, in words with the counts ("13 triangles
+  // below 30°: 13 need a split -Y forbids"); empty when complete.
+  std::string unmet() const;
 };
+
+// Edges shorter than this fraction of the largest coordinate magnitude of
+// their triangle are not split: a point placed on them would be within 2^16
+// units in the last place of their ends (doubles carry 2^-52), so rounding
+// bends segments and new triangles no longer meet the bound.
+inline constexpr double kPrecisionFloor = 0x1p-36;
 
 // Refines a carved, compacted constrained Delaunay triangulation in place:
 // constrained edges are the segments, boundary half-edges have twin kNone

@@ -19,7 +19,7 @@ enum ExitCode : int {
   kExitOk = 0,
   kExitUsage = 1,        // bad switches or arguments, or a switch not available yet
   kExitInput = 2,        // input file missing, unreadable or malformed; input not meshable
-  kExitBudget = 3,       // a budget stopped refinement before the requested quality, or triangles are left too large
+  kExitBudget = 3,       // bounds not met: a budget stopped refinement, or triangles are left too large or below the angle bound outside small input angles
   kExitOutput = 4,       // an output file could not be written
   kExitCheckFailed = 5,  // -C found the mesh invalid
   kExitInternal = 70,    // a bug: please report it

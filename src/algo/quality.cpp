@@ -16,6 +16,12 @@ namespace deltamesh {
 
 namespace {
 
+// As the refinement's dist2 (same expression, same rounding).
+double squared_distance(const Point& a, const Point& b) {
+  const double dx = a.x - b.x, dy = a.y - b.y;
+  return dx * dx + dy * dy;
+}
+
 std::string fmt(double v) {
   char buf[64];
   std::snprintf(buf, sizeof buf, "%.6g", v);
@@ -43,21 +49,37 @@ QualityReport quality_report(const Mesh& mesh, const QualityOptions& opt, const 
       if (mesh.is_constrained(e) && (mesh.twin(e) == kNone || mesh.twin(e) > e)) ++r.segments;
     }
     ++r.triangles;
-    const double angles[3] = {angle_at_deg(a, b, c), angle_at_deg(b, c, a), angle_at_deg(c, a, b)};
+    // Measured on the triangle scaled by a power of two (exact), so nothing
+    // overflows or underflows at any scale; the counts below use exactly the
+    // refinement's expressions on exactly scaled coordinates, so they agree
+    // with it bit for bit. Lengths and areas are scaled back at the end.
+    Point s[3];
+    int e = 0;
+    scale_triangle(a, b, c, s, e);
+    const double angles[3] = {angle_at_deg(s[0], s[1], s[2]), angle_at_deg(s[1], s[2], s[0]),
+                              angle_at_deg(s[2], s[0], s[1])};
     const double lo = std::min({angles[0], angles[1], angles[2]});
     const double hi = std::max({angles[0], angles[1], angles[2]});
     for (double ang : angles) r.angle_histogram[std::min<std::size_t>(17, static_cast<std::size_t>(ang / 10.0))]++;
-    const double l2[3] = {(b.x - a.x) * (b.x - a.x) + (b.y - a.y) * (b.y - a.y),
-                          (c.x - b.x) * (c.x - b.x) + (c.y - b.y) * (c.y - b.y),
-                          (a.x - c.x) * (a.x - c.x) + (a.y - c.y) * (a.y - c.y)};
-    const double shortest = std::sqrt(std::min({l2[0], l2[1], l2[2]}));
-    const double longest = std::sqrt(std::max({l2[0], l2[1], l2[2]}));
-    const double area = 0.5 * std::fabs((b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x));
+    const double l2[3] = {squared_distance(s[0], s[1]), squared_distance(s[1], s[2]), squared_distance(s[2], s[0])};
+    // Twice the area from an end of the shortest edge, with the shortest
+    // edge chosen as the refinement chooses it (see its eval()).
+    double lo2 = l2[0], o1 = l2[1], o2 = l2[2];
+    int sh = 0;
+    if (l2[1] < lo2) lo2 = l2[1], o1 = l2[2], o2 = l2[0], sh = 1;
+    if (l2[2] < lo2) lo2 = l2[2], o1 = l2[0], o2 = l2[1], sh = 2;
+    const Point &P = s[sh], &Q = s[(sh + 1) % 3], &R = s[(sh + 2) % 3];
+    const double cross = (Q.x - P.x) * (R.y - P.y) - (Q.y - P.y) * (R.x - P.x);
+    const double shortest_s = std::sqrt(std::min({l2[0], l2[1], l2[2]}));
+    const double longest_s = std::sqrt(std::max({l2[0], l2[1], l2[2]}));
+    const double area_s = 0.5 * std::fabs(cross);
     // Shortest altitude = 2 area / longest edge.
-    const double aspect = area > 0 ? longest * longest / (2 * area) : INFINITY;
+    const double aspect = area_s > 0 ? longest_s * longest_s / (2 * area_s) : INFINITY;
     // Circumradius = abc / (4 area).
-    const double radius = area > 0 ? std::sqrt(l2[0] * l2[1] * l2[2]) / (4 * area) : INFINITY;
-    const double re = shortest > 0 ? radius / shortest : INFINITY;
+    const double radius_s = area_s > 0 ? std::sqrt(l2[0] * l2[1] * l2[2]) / (4 * area_s) : INFINITY;
+    const double re = shortest_s > 0 ? radius_s / shortest_s : INFINITY;
+    const double shortest = std::ldexp(shortest_s, e), longest = std::ldexp(longest_s, e);
+    const double area = std::ldexp(area_s, 2 * e);
     std::size_t bin = 0;
     while (bin < QualityReport::kAspectLimits.size() && aspect > QualityReport::kAspectLimits[bin]) ++bin;
     r.aspect_histogram[bin]++;
@@ -79,11 +101,10 @@ QualityReport quality_report(const Mesh& mesh, const QualityOptions& opt, const 
     // Below the bound by the test refinement uses (sine of the smallest
     // angle, from the cross product and the two longer edges), so both count alike.
     if (opt.min_angle_deg > 0) {
-      const double s = std::sin(opt.min_angle_deg * std::numbers::pi / 180.0);
-      const double cross = (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
-      const double mn = std::min({l2[0], l2[1], l2[2]});
-      const double den = l2[0] * l2[1] * l2[2] / mn;
-      if (cross * cross < s * s * den) ++r.below_angle;
+      const double rad = opt.min_angle_deg * std::numbers::pi / 180.0;
+      const double sin2 = std::sin(rad) * std::sin(rad);
+      // o1, o2: the two edges beside the shortest, as the refinement takes them.
+      if (cross * cross < sin2 * (o1 * o2)) ++r.below_angle;
     }
     double bound = opt.max_area;
     const double tb = mesh.triangle_area_bound(t);

@@ -6,6 +6,7 @@
 #include <chrono>
 #include <utility>
 
+#include "algo/normalize.hpp"
 #include "deltamesh/errors.hpp"
 #include "deltamesh/pipeline.hpp"
 #include "deltamesh/second_order.hpp"
@@ -271,12 +272,44 @@ void check_result(const Plan& plan, RunResult& res, Phases& phases) {
   phases.add("check", t);
 }
 
+// The input and every size in the plan in the frame (algo/normalize.hpp):
+// the run meshes there and restore_result maps back.
+void normalize_input(const detail::Frame& f, Plan& plan, RunInput& in) {
+  detail::scale_vertices(f, in.pslg.points);
+  detail::scale_seeds(f, in.pslg.holes);
+  std::vector<Point> seeds;
+  for (const RegionSeed& r : in.pslg.regions) seeds.push_back(r.p);
+  detail::scale_seeds(f, seeds);
+  for (std::size_t i = 0; i < seeds.size(); ++i) {
+    in.pslg.regions[i].p = seeds[i];
+    in.pslg.regions[i].max_area = f.area_to(in.pslg.regions[i].max_area);
+  }
+  for (double& a : in.triangle_area_bounds) a = f.area_to(a);
+  for (double& h : in.vertex_sizes) h = f.length_to(h);
+  in.size = f.length_field_to(std::move(in.size));
+  RefinementPlan& r = plan.refine;
+  if (r.max_area) r.max_area = f.area_to(*r.max_area);
+  r.max_area_at = f.area_field_to(std::move(r.max_area_at));
+  r.max_edge_at = f.length_field_to(std::move(r.max_edge_at));
+}
+
+void restore_result(const detail::Frame& f, RunResult& res) {
+  detail::restore(f, res.mesh);
+  detail::restore(f, res.stats.refine);
+  detail::restore(f, res.adapt.refine);
+}
+
 }  // namespace
 }  // namespace pipeline
 
-RunResult run(const Plan& plan, RunInput input) {
+RunResult run(const Plan& user_plan, RunInput input) {
   using namespace pipeline;
   const auto t0 = Clock::now();
+  // Meshed in a power-of-two frame where the exact predicates and every
+  // measure are safe, whatever the input's scale (docs/robustness.md).
+  const detail::Frame frame = detail::frame_for(input.pslg.points);
+  Plan plan = user_plan;
+  normalize_input(frame, plan, input);
   RunResult res;
   Phases phases{res.phases};
   const std::vector<std::string> unused = unused_settings(plan);
@@ -302,6 +335,7 @@ RunResult run(const Plan& plan, RunInput input) {
   if (plan.check) check_result(plan, res, phases);
   // After -j and -C, which see the linear mesh.
   if (plan.order == 2) res.midside = add_midpoint_nodes(res.mesh);
+  restore_result(frame, res);
   res.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
   return res;
 }

@@ -26,7 +26,7 @@ SmoothStats smooth_refined(Mesh& mesh, const SmoothOptions& options, const Refin
                            RefineStats& refined, std::size_t* resplit) {
   const SmoothStats s = smooth(mesh, options);
   if (resplit) *resplit = 0;
-  if (!refined.complete) return s;  // a budget stopped it: nothing is owed
+  if (refined.budget_exhausted || refined.time_exhausted) return s;  // a budget stopped it: nothing is owed
   // The budgets are the whole run's (the second refinement could otherwise
   // add max_steiner points again, and take the time limit again).
   RefineOptions r = refine_options;

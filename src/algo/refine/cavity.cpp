@@ -5,6 +5,8 @@
 // it, grown without crossing segments) is found read-only, so the same
 // search tells whether the point encroaches a segment (R2's rejection)
 // before anything changes; insert.cpp commits it.
+#include <cmath>
+
 #include "algo/refine/refiner.hpp"
 #include "deltamesh/predicates.hpp"
 
@@ -35,10 +37,25 @@ Refiner::Walk Refiner::walk(TriId t, const Point& c) const {
       return w;
     }
   }
-  const Point o{(A.x + B.x + C.x) / 3.0, (A.y + B.y + C.y) / 3.0};
-  if (!(orient2d(A, B, o) > 0 && orient2d(B, C, o) > 0 && orient2d(C, A, o) > 0)) {
-    w.kind = Walk::Failed;
-    return w;
+  Point o{(A.x + B.x + C.x) / 3.0, (A.y + B.y + C.y) / 3.0};
+  auto inside = [&](const Point& p) { return orient2d(A, B, p) > 0 && orient2d(B, C, p) > 0 && orient2d(C, A, p) > 0; };
+  if (!inside(o)) {
+    // A sliver whose centroid rounds out of it (a tiny edge seen from a far
+    // corner: inside, only points near that edge have the precision to be
+    // strictly inside): start a quarter of the edge's length in from it.
+    const Point* v[3] = {&A, &B, &C};
+    int s = 0;
+    double lo = dist2(A, B);
+    if (dist2(B, C) < lo) lo = dist2(B, C), s = 1;
+    if (dist2(C, A) < lo) lo = dist2(C, A), s = 2;
+    const Point &P = *v[s], &Q = *v[(s + 1) % 3], &R = *v[(s + 2) % 3];
+    const Point m{P.x + 0.5 * (Q.x - P.x), P.y + 0.5 * (Q.y - P.y)};
+    const double f = 0.25 * std::sqrt(lo / dist2(m, R));
+    o = {m.x + (R.x - m.x) * f, m.y + (R.y - m.y) * f};
+    if (!inside(o)) {
+      w.kind = Walk::Failed;
+      return w;
+    }
   }
   const bool left[3] = {orient2d(o, c, A) >= 0, orient2d(o, c, B) >= 0, orient2d(o, c, C) >= 0};
   HalfEdgeId exit = kNone;

@@ -68,26 +68,6 @@ void Refiner::setup() {
   budget_ = opt_.max_steiner;
   if (budget_ == kAutomaticBudget) budget_ = kAutomaticBudgetBase + kAutomaticBudgetPerVertex * n_input_;
 
-  // Bounding box: the precision floor for splitting.
-  double lox = 0, hix = 0, loy = 0, hiy = 0;
-  bool first = true;
-  for (VertexId v : tv_) {
-    if (v >= pts_.size()) continue;
-    const Point& p = pts_[v];
-    if (first) {
-      lox = hix = p.x;
-      loy = hiy = p.y;
-      first = false;
-    }
-    lox = std::min(lox, p.x), hix = std::max(hix, p.x), loy = std::min(loy, p.y), hiy = std::max(hiy, p.y);
-  }
-  // Edges shorter than 2^-36 of the coordinates' magnitude (or 2^-45 of the
-  // diameter) are not split: below that, rounded split points bend segments
-  // visibly and circumcentres lose their meaning.
-  const double mag = std::max({std::fabs(lox), std::fabs(hix), std::fabs(loy), std::fabs(hiy)});
-  const double diag = std::sqrt((hix - lox) * (hix - lox) + (hiy - loy) * (hiy - loy));
-  const double floor_len = std::max(mag * 0x1p-36, diag * 0x1p-45);
-  precision2_ = floor_len * floor_len;
 
   // Every boundary edge is a segment.
   const std::size_t ne = tv_.size();
@@ -303,7 +283,10 @@ void Refiner::decide(TriId t, Decision& d) {
     d.reason = Reason::SmallAngle;
     return;
   }
-  if (ev.shortest2 < precision2_) {
+  // The new point goes near the shortest edge (an off-centre, or a split of
+  // it): the precision that matters is at its ends.
+  const HalfEdgeId se = 3 * t + ev.shortest;
+  if (below_precision_floor(ev.shortest2, pts_[tv_[se]], pts_[tv_[next_edge(se)]])) {
     d.reason = Reason::Precision;
     return;
   }
@@ -314,6 +297,7 @@ void Refiner::decide(TriId t, Decision& d) {
   }
   if (ev.skinny && !ev.large && best_)
     d.c = opt_.steiner == SteinerRule::Grid ? grid_point(t, ev, d.c) : best_point(t, ev, d.c);
+  d.c = within_predicate_range(d.c);
   d.rule = ev.skinny && !ev.large && best_ ? TraceReason::BestPoint
            : d.offcenter                   ? TraceReason::OffCentre
            : ev.skinny                     ? TraceReason::Circumcentre

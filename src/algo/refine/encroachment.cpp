@@ -90,7 +90,7 @@ bool Refiner::splittable(HalfEdgeId e) const {
   const Point& a = pts_[tv_[e]];
   const Point& b = pts_[tv_[next_edge(e)]];
   const Point m = segment_split_point(tv_[e], tv_[next_edge(e)]);
-  return !(m == a || m == b) && dist2(a, b) >= precision2_;
+  return !(m == a || m == b) && !below_precision_floor(dist2(a, b), a, b);
 }
 
 // R1's trigger after an insertion: subsegment e (if it is one) is pushed on
@@ -122,7 +122,7 @@ Point Refiner::segment_split_point(VertexId a, VertexId b) const {
     double shell = std::ldexp(1.0, ex - 1);  // <= half < 2 * shell
     if (half > shell * std::numbers::sqrt2) shell *= 2;
     const double f = shell / len;
-    return {apex.x + (other.x - apex.x) * f, apex.y + (other.y - apex.y) * f};
+    return within_predicate_range({apex.x + (other.x - apex.x) * f, apex.y + (other.y - apex.y) * f});
   }
   // Subsegments further out, on a segment in a narrow wedge (one with
   // mirrored partners) at an apex of three or more segments (a hub): on the
@@ -146,11 +146,11 @@ Point Refiner::segment_split_point(VertexId a, VertexId b) const {
         const Point& O = pts_[segs_[s][0] == apex ? segs_[s][1] : segs_[s][0]];
         const double ra = std::sqrt(dist2(P, A)), rb = std::sqrt(dist2(P, B));
         const double f = grid_radius(std::min(ra, rb), std::max(ra, rb)) / std::sqrt(dist2(P, O));
-        return {P.x + (O.x - P.x) * f, P.y + (O.y - P.y) * f};
+        return within_predicate_range({P.x + (O.x - P.x) * f, P.y + (O.y - P.y) * f});
       }
     }
   }
-  return {0.5 * (A.x + B.x), 0.5 * (A.y + B.y)};
+  return within_predicate_range({0.5 * (A.x + B.x), 0.5 * (A.y + B.y)});
 }
 
 // A boundary segment's rounded split point may fall outside the domain,

@@ -29,11 +29,18 @@ double Refiner::area_bound(TriId t, const Point& a, const Point& b, const Point&
 Eval Refiner::eval(TriId t, const Point& a, const Point& b, const Point& c) const {
   Eval ev;
   const double l0 = dist2(a, b), l1 = dist2(b, c), l2 = dist2(c, a);
-  const double cross = (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
   double lo = l0, o1 = l1, o2 = l2;
   int s = 0;
   if (l1 < lo) lo = l1, o1 = l2, o2 = l0, s = 1;
   if (l2 < lo) lo = l2, o1 = l0, o2 = l1, s = 2;
+  // Twice the area, from an end P of the shortest edge PQ: (Q - P) and
+  // (R - P) lose nothing to cancellation even where P and Q are far smaller
+  // than R (a tiny feature seen from far away), which the differences from
+  // another corner would round away.
+  const Point& P = s == 0 ? a : (s == 1 ? b : c);
+  const Point& Q = s == 0 ? b : (s == 1 ? c : a);
+  const Point& R = s == 0 ? c : (s == 1 ? a : b);
+  const double cross = (Q.x - P.x) * (R.y - P.y) - (Q.y - P.y) * (R.x - P.x);
   ev.shortest = s;
   ev.shortest2 = lo;
   // The smallest angle faces the shortest edge: sin = cross / (|o1| |o2|).

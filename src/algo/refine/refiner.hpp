@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <array>
 #include <chrono>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <utility>
@@ -12,6 +13,7 @@
 
 #include "algo/refine/queue.hpp"
 #include "deltamesh/mesh.hpp"
+#include "deltamesh/predicates.hpp"
 #include "deltamesh/progress.hpp"
 #include "deltamesh/refine.hpp"
 #include "mesh/editor.hpp"
@@ -130,6 +132,22 @@ class Refiner {
     return eval(t, pts_[tv_[e]], pts_[tv_[e + 1]], pts_[tv_[e + 2]]);
   }
   void consider(TriId t);
+  // Precision, measured where the edge is (not over the domain): an edge
+  // ab of squared length len2 is too short to split when below
+  // kPrecisionFloor of the largest coordinate magnitude of a and b; a point
+  // on or beside it would lie within 2^16 ulps of its ends.
+  static bool below_precision_floor(double len2, const Point& a, const Point& b) {
+    const double mag = std::max(std::max(std::fabs(a.x), std::fabs(a.y)), std::max(std::fabs(b.x), std::fabs(b.y))) *
+                       kPrecisionFloor;
+    return len2 < mag * mag;
+  }
+  // A new coordinate below the exact predicates' smallest magnitude
+  // (kMinCoordinate) is rounded to 0: a move far below the floor above.
+  static Point within_predicate_range(Point p) {
+    if (std::fabs(p.x) < kMinCoordinate) p.x = std::copysign(0.0, p.x);  // -0 stays -0
+    if (std::fabs(p.y) < kMinCoordinate) p.y = std::copysign(0.0, p.y);
+    return p;
+  }
   bool alive(const QueueEntry& e) const {
     return e.t < tv_.size() / 3 && tv_[3 * e.t] == e.a && tv_[3 * e.t + 1] == e.b && tv_[3 * e.t + 2] == e.c;
   }
@@ -251,7 +269,6 @@ class Refiner {
   bool sized_ = false;            // some size bound (area or edge length) applies
   double bound_rad_ = 0;          // the angle bound in radians
   bool has_markers_ = false;
-  double precision2_ = 0;       // squared shortest edge below which nothing is split
   double shell_cos_ = -2;       // input vertices whose smallest segment angle has a larger cosine get shells
   double small_cos2_ = 0.25;    // cos^2 of the largest input angle the small-angle rule treats as small
   double channel_sin2_ = 0;     // sin^2 of the largest angle between the two sides of a channel

@@ -1,0 +1,136 @@
+// Exact power-of-two normalisation (see normalize.hpp).
+#include "algo/normalize.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <string>
+
+#include "deltamesh/errors.hpp"
+#include "deltamesh/predicates.hpp"
+
+namespace deltamesh::detail {
+
+namespace {
+
+double scale_positive(double v, int e) {
+  if (!(v > 0)) return v;
+  const double s = std::ldexp(v, e);
+  return s > 0 ? s : std::numeric_limits<double>::denorm_min();
+}
+
+double largest(std::span<const Point> points) {
+  double m = 0;
+  for (const Point& p : points) m = std::max({m, std::fabs(p.x), std::fabs(p.y)});
+  return m;
+}
+
+std::string show(double v) {
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%.17g", v);
+  return buf;
+}
+
+}  // namespace
+
+double Frame::area_to(double a) const { return scale_positive(a, 2 * k); }
+double Frame::length_to(double h) const { return scale_positive(h, k); }
+double Frame::area_from(double a) const { return scale_positive(a, -2 * k); }
+
+std::function<double(double, double)> Frame::area_field_to(std::function<double(double, double)> f) const {
+  if (!f || identity()) return f;
+  return [f = std::move(f), k = k, self = *this](double x, double y) {
+    return self.area_to(f(std::ldexp(x, -k), std::ldexp(y, -k)));
+  };
+}
+
+std::function<double(double, double)> Frame::length_field_to(std::function<double(double, double)> f) const {
+  if (!f || identity()) return f;
+  return [f = std::move(f), k = k, self = *this](double x, double y) {
+    return self.length_to(f(std::ldexp(x, -k), std::ldexp(y, -k)));
+  };
+}
+
+Frame frame_for(std::span<const Point> points) {
+  double m = 0, lo = INFINITY;  // largest, and smallest nonzero, magnitude
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const Point& p = points[i];
+    if (!std::isfinite(p.x) || !std::isfinite(p.y)) {
+      const bool bad_x = !std::isfinite(p.x);
+      const double v = bad_x ? p.x : p.y;
+      throw InputError(std::string("coordinate ") + (bad_x ? "x" : "y") + " of point " + std::to_string(i) + " is " +
+                           (std::isnan(v) ? "NaN" : "infinite"),
+                       i);
+    }
+    for (const double v : {std::fabs(p.x), std::fabs(p.y)}) {
+      m = std::max(m, v);
+      if (v > 0) lo = std::min(lo, v);
+    }
+  }
+  Frame f;
+  if (m == 0) return f;
+  int e = 0, elo = 0;
+  std::frexp(m, &e);  // m = g 2^e, g in [1/2, 1)
+  std::frexp(lo, &elo);
+  // The largest magnitude in [1/2, 1), where every measure is safe; raised
+  // (up to the predicates' 2^200) only as far as the smallest nonzero one
+  // needs to reach their 2^-200.
+  int highest = 200 - e;  // m 2^highest < 2^200; one more when m is a power of two
+  if (std::ldexp(m, highest + 1) <= kMaxCoordinate) ++highest;
+  f.k = std::min(std::max(-e, -199 - elo), highest);
+  return f;
+}
+
+void scale_vertices(const Frame& f, std::vector<Point>& points) {
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    Point& p = points[i];
+    const Point q{std::ldexp(p.x, f.k), std::ldexp(p.y, f.k)};
+    for (int c = 0; c < 2; ++c) {
+      const double v = c ? p.y : p.x, s = c ? q.y : q.x;
+      if (v != 0 && std::fabs(s) < kMinCoordinate)
+        throw InputError(std::string("coordinate ") + (c ? "y" : "x") + " of point " + std::to_string(i) + " (" +
+                             show(v) + ") is nonzero but too small beside the largest coordinate magnitude (" + show(largest(points)) +
+                             "): the exact predicates resolve nonzero coordinates within a ratio of about 2^400 "
+                             "(1e120) of the largest",
+                         i);
+    }
+    p = q;
+  }
+}
+
+void scale_seeds(const Frame& f, std::vector<Point>& points) {
+  const double big = 0x1p100;
+  for (Point& p : points)
+    for (double* v : {&p.x, &p.y}) {
+      if (!std::isfinite(*v)) continue;  // refused where seeds are read
+      double s = std::ldexp(*v, f.k);
+      if (std::fabs(s) > big) s = std::copysign(big, s);
+      if (std::fabs(s) < kMinCoordinate) s = 0.0;
+      *v = s;
+    }
+}
+
+void restore(const Frame& f, Mesh& mesh) {
+  if (f.identity()) return;
+  for (Point& p : mesh.points_mut()) p = {std::ldexp(p.x, -f.k), std::ldexp(p.y, -f.k)};
+  if (mesh.has_triangle_area_bounds())
+    for (TriId t = 0; t < mesh.num_triangle_slots(); ++t) {
+      const double a = mesh.triangle_area_bound(t);
+      if (a > 0) mesh.set_triangle_area_bound(t, f.area_from(a));
+    }
+}
+
+void restore(const Frame& f, RefineStats& st) {
+  if (f.identity()) return;
+  const int k = -f.k;
+  st.stall_x = std::ldexp(st.stall_x, k);
+  st.stall_y = std::ldexp(st.stall_y, k);
+  st.stall_radius = std::ldexp(st.stall_radius, k);
+  st.precision_x = std::ldexp(st.precision_x, k);
+  st.precision_y = std::ldexp(st.precision_y, k);
+  st.precision_edge = std::ldexp(st.precision_edge, k);
+  st.precision_magnitude = std::ldexp(st.precision_magnitude, k);
+}
+
+}  // namespace deltamesh::detail

@@ -1,0 +1,56 @@
+// Exact normalisation of the input into the predicates' safe range
+// (internal; docs/robustness.md "Any finite coordinates").
+//
+// Every coordinate is multiplied by 2^k, k chosen so the largest magnitude
+// lies in [1/2, 1) (or higher, up to 2^200, when the smallest nonzero one
+// would otherwise fall below the predicates' 2^-200). Multiplying a double by a power of two is exact unless
+// the result leaves the normal range, so the mesh is built on exactly the
+// input scaled, and scaling back returns the input's vertices bit for bit.
+// Lengths scale by 2^k and areas by 2^2k. No translation: adding an offset
+// back to a Steiner point would round it, and a mesh valid in the
+// normalised frame could fold in the user's.
+#pragma once
+#include <functional>
+#include <span>
+#include <vector>
+
+#include "deltamesh/geometry.hpp"
+#include "deltamesh/mesh.hpp"
+#include "deltamesh/refine.hpp"
+
+namespace deltamesh::detail {
+
+struct Frame {
+  int k = 0;  // normalised = original * 2^k
+
+  bool identity() const { return k == 0; }
+  // A positive area / length bound in the normalised frame (<= 0 and NaN
+  // pass through: "no bound" stays "no bound"); a positive bound never
+  // becomes 0, an overflow is +inf (no bound).
+  double area_to(double a) const;
+  double length_to(double h) const;
+  double area_from(double a) const;
+  // Callbacks in the user's frame, called with normalised coordinates.
+  std::function<double(double, double)> area_field_to(std::function<double(double, double)> f) const;
+  std::function<double(double, double)> length_field_to(std::function<double(double, double)> f) const;
+};
+
+// The frame for these vertices. Throws InputError (naming the point) for a
+// NaN or infinite coordinate.
+Frame frame_for(std::span<const Point> points);
+
+// The vertices scaled into the frame. Throws InputError (naming the point)
+// for a nonzero coordinate below kMinCoordinate once scaled: one about
+// 2^400 times smaller than the largest, beyond what the exact predicates
+// resolve next to it.
+void scale_vertices(const Frame& f, std::vector<Point>& points);
+// Hole and region seeds: scaled, clamped to +-2^100 (they stay outside the
+// vertices' box) and flushed to 0 below kMinCoordinate.
+void scale_seeds(const Frame& f, std::vector<Point>& points);
+
+// Back to the user's frame: every vertex and per-triangle area bound.
+void restore(const Frame& f, Mesh& mesh);
+// The lengths and places in refinement statistics.
+void restore(const Frame& f, RefineStats& st);
+
+}  // namespace deltamesh::detail
