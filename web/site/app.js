@@ -264,7 +264,9 @@ worker.onerror = (e) => { setStatus('the mesher failed to load'); showError('web
 function showResult(m) {
   const lines = m.stdout.split('\n');
   const json = lines.filter((l) => l.startsWith('{')).pop();
-  $('log').textContent = lines.filter((l) => !l.startsWith('{')).join('\n') + (m.stderr ? '\n' + m.stderr : '');
+  // The files live in the worker's /in and /out: the names are what the user knows.
+  $('log').textContent = (lines.filter((l) => !l.startsWith('{')).join('\n') + (m.stderr ? '\n' + m.stderr : ''))
+    .replace(/\/(in|out)\//g, '');
   const failed = !(m.code === 0 || m.code === 3) || !m.view || m.view.error;
   if (failed) {
     const msg = m.stderr || (m.view && m.view.error) || `exit code ${m.code}`;

@@ -51,6 +51,10 @@ function explainEvent(ev) {
       return `segment ${ev.seg} recovered by the ${ev.why} method` + (ev.flips !== undefined ? ` (${ev.flips} flips)` : '') +
         (why ? ': ' + why : '');
     case 'renumber': return 'vertices renumbered';
+    case 'carve': return 'triangles outside the domain (in holes, outside the segments) removed';
+    case 'undo': return 'refinement above 34° made no progress: back to the mesh refined to 34°';
+    case 'insert': if (ev.v === undefined) return 'the triangles of the mesh read, all at once';
+    // falls through
     case 'end': return `the end: ${ev.vertices} vertices, ${ev.triangles} triangles`;
     default: {
       const head = ev.ev.replace('_', ' ') + (ev.v !== undefined ? ` vertex ${ev.v}` : '') + (ev.edge ? ` edge ${ev.edge} → ${ev.to}` : '');
@@ -100,8 +104,15 @@ class TraceReplay {
     if (ev.ev === 'points') ev.points.forEach((p, i) => { s.points[ev.first + i] = p; });
     if (ev.v !== undefined && ev.p) s.points[ev.v] = ev.p;
     if (ev.ev === 'renumber') {
-      const points = [];
-      ev.map.forEach((to, from) => { if (to >= 0) points[to] = s.points[from]; });
+      // Entry map[i] takes the point of vertex i (the smallest such i), an
+      // entry nothing maps to keeps its point; `vertices` entries in all.
+      const n = ev.vertices !== undefined ? ev.vertices : Math.max(-1, ...ev.map) + 1;
+      const points = s.points.slice(0, n);
+      const taken = new Set();
+      ev.map.forEach((to, from) => {
+        if (to >= 0 && !taken.has(to)) { points[to] = s.points[from]; taken.add(to); }
+      });
+      points.length = n;
       const tris = new Map();
       for (const t of s.tris.values()) {
         const r = t.map((i) => ev.map[i]);

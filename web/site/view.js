@@ -57,29 +57,52 @@ class MeshView {
 
   pan(dx, dy) { this.ox += dx; this.oy += dy; this.draw(); }
 
+  // Builds the paths in slices of a few milliseconds, drawing as it goes,
+  // so that the page stays responsive while 10^5 triangles are turned into
+  // paths (each path call costs about a microsecond).
   setMesh(v) {
+    if (this.building) cancelAnimationFrame(this.building);
+    this.building = 0;
     if (!v) { this.mesh = null; this.draw(); return; }
     const { xy, tri, angle, seg } = v;
-    const fills = Array.from({ length: kBuckets }, () => new Path2D());
-    const edges = new Path2D();
-    const withEdges = angle.length <= 300000;
-    for (let t = 0; t < angle.length; ++t) {
-      const a = 2 * tri[3 * t], b = 2 * tri[3 * t + 1], c = 2 * tri[3 * t + 2];
-      const k = Math.min(kBuckets - 1, Math.floor(angle[t] / 60 * kBuckets));
-      const p = fills[k];
-      p.moveTo(xy[a], xy[a + 1]); p.lineTo(xy[b], xy[b + 1]); p.lineTo(xy[c], xy[c + 1]); p.closePath();
-      if (withEdges) {
-        edges.moveTo(xy[a], xy[a + 1]); edges.lineTo(xy[b], xy[b + 1]); edges.lineTo(xy[c], xy[c + 1]); edges.closePath();
-      }
-    }
-    const segments = new Path2D();
+    // Paths of at most kChunk triangles: Skia's fill and stroke slow down
+    // badly on single paths of 10^5 subpaths.
+    const kChunk = 2048;
+    const withEdges = angle.length <= 50000;
+    const segments = [];
     for (let s = 0; s < seg.length; s += 2) {
-      const a = 2 * seg[s], b = 2 * seg[s + 1];
-      segments.moveTo(xy[a], xy[a + 1]); segments.lineTo(xy[b], xy[b + 1]);
+      if (s % (2 * kChunk) === 0) segments.push(new Path2D());
+      const a = 2 * seg[s], b = 2 * seg[s + 1], p = segments[segments.length - 1];
+      p.moveTo(xy[a], xy[a + 1]); p.lineTo(xy[b], xy[b + 1]);
     }
-    this.mesh = { fills, edges, segments, withEdges, bounds: bounds(xy) };
-    this.draw();
+    const m = { fills: [], edges: [], segments, withEdges, bounds: bounds(xy), triangles: Math.max(1, angle.length), count: angle.length, done: 0 };
+    this.mesh = m;
+    const open = new Array(kBuckets).fill(null);
+    let edgePath = null;
+    const slice = () => {
+      const stop = performance.now() + 12;
+      let t = m.done;
+      for (; t < angle.length && (t % 256 !== 0 || performance.now() < stop); ++t) {
+        const a = 2 * tri[3 * t], b = 2 * tri[3 * t + 1], c = 2 * tri[3 * t + 2];
+        const k = Math.min(kBuckets - 1, Math.floor(angle[t] / 60 * kBuckets));
+        if (!open[k] || open[k].n === kChunk) { open[k] = { k, path: new Path2D(), n: 0 }; m.fills.push(open[k]); }
+        const p = open[k].path;
+        ++open[k].n;
+        p.moveTo(xy[a], xy[a + 1]); p.lineTo(xy[b], xy[b + 1]); p.lineTo(xy[c], xy[c + 1]); p.closePath();
+        if (withEdges) {
+          if (t % kChunk === 0) { edgePath = new Path2D(); m.edges.push(edgePath); }
+          edgePath.moveTo(xy[a], xy[a + 1]); edgePath.lineTo(xy[b], xy[b + 1]); edgePath.lineTo(xy[c], xy[c + 1]); edgePath.closePath();
+        }
+      }
+      m.done = t;
+      this.building = t < angle.length && this.mesh === m ? requestAnimationFrame(slice) : 0;
+      this.draw();
+    };
+    slice();
   }
+
+  // All the triangles of the mesh are in the picture.
+  complete() { return !this.mesh || this.mesh.done >= this.mesh.count; }
 
   // state: {points: [[x, y]], tris: Map key -> [a, b, c]}, ev: the event just applied.
   setTrace(state, ev, prevPoints) {
@@ -119,9 +142,16 @@ class MeshView {
 
   drawMesh(px) {
     const ctx = this.ctx, m = this.mesh;
-    m.fills.forEach((p, k) => { ctx.fillStyle = angleColour((k + 0.5) * 60 / kBuckets); ctx.fill(p); });
-    if (m.withEdges) { ctx.strokeStyle = 'rgba(30,30,30,0.55)'; ctx.lineWidth = 0.6 * px; ctx.stroke(m.edges); }
-    ctx.strokeStyle = '#111'; ctx.lineWidth = 2 * px; ctx.stroke(m.segments);
+    for (const f of m.fills) { ctx.fillStyle = angleColour((f.k + 0.5) * 60 / kBuckets); ctx.fill(f.path); }
+    // Edges only where triangles are a few pixels or more on screen: below
+    // that they are a grey blur, and stroking 10^5 of them is slow.
+    const b = m.bounds, pixels = (b.maxx - b.minx) * (b.maxy - b.miny) / m.triangles / (px * px);
+    if (m.withEdges && pixels > 60) {
+      ctx.strokeStyle = 'rgba(30,30,30,0.55)'; ctx.lineWidth = 0.6 * px;
+      for (const e of m.edges) ctx.stroke(e);
+    }
+    ctx.strokeStyle = '#111'; ctx.lineWidth = 2 * px;
+    for (const p of m.segments) ctx.stroke(p);
   }
 
   drawTrace(px) {
