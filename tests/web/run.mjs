@@ -44,7 +44,8 @@ const tmp = fs.mkdtempSync(path.join(os.tmpdir(), 'deltamesh-web-'));
 // The native command line on the same input: its --stats=json numbers.
 function cliStats(inputPath, sw, cdt) {
   const base = path.join(tmp, path.basename(inputPath).replace(/\.[^.]*$/, ''));
-  fs.copyFileSync(inputPath, base + path.extname(inputPath));
+  if (path.resolve(inputPath) !== path.resolve(base + path.extname(inputPath)))
+    fs.copyFileSync(inputPath, base + path.extname(inputPath));
   const r = spawnSync(opt.cli, [sw, '--cdt=' + cdt, '--stats=json', '--output', base + '.1.node',
     base + path.extname(inputPath)], { encoding: 'utf8' });
   const json = r.stdout.split('\n').filter((l) => l.startsWith('{')).pop();
@@ -154,6 +155,27 @@ try {
   check(!err.hidden && /broken\.poly:5:/.test(err.text), 'the broken .poly: the page shows file:line', err.text);
   check(err.text.trim() === cliMsg, 'the broken .poly: the same message as the CLI', cliMsg);
 
+  // 3b. Dropped GeoJSON (a polygon with a hole, meshed even-odd) and .node
+  //     (a point set) files: the command line's numbers too.
+  const dropped = [
+    ['ring.geojson', '{"type":"Polygon","coordinates":[[[0,0],[4,0],[4,3],[0,3],[0,0]],[[1,1],[2,1],[2,2],[1,2],[1,1]]]}\n', '-q30V'],
+    ['points.node', '6 2 0 0\n1 0 0\n2 3 0\n3 3 2\n4 0 2\n5 1.5 0.7\n6 0.4 1.6\n', '-q30V'],
+  ];
+  for (const [name, text, sw] of dropped) {
+    await setSwitches({ cdt: 'fast', angle: '30' });
+    const r = await meshAndWait(() => page.evaluate((name, text) => {
+      const dt = new DataTransfer();
+      dt.items.add(new File([text], name));
+      document.getElementById('view-wrap').dispatchEvent(new DragEvent('drop', { dataTransfer: dt, bubbles: true, cancelable: true }));
+    }, name, text));
+    const file = path.join(tmp, name);
+    fs.writeFileSync(file, text);
+    const cli = cliStats(file, sw, 'fast');
+    check(r.code === 0 && r.stats && cli.stats && r.stats.triangles === cli.stats.triangles &&
+      r.stats.min_angle_deg === cli.stats.min_angle_deg, `dropped ${name}: the CLI's triangles and smallest angle`,
+      `${r.stats && r.stats.triangles} / ${cli.stats && cli.stats.triangles}`);
+  }
+
   // 4. A PSLG drawn with the mouse: a square with a square hole.
   await page.click('#draw-new');
   await setSwitches({ cdt: 'fast', angle: '30', area: '1' });
@@ -207,7 +229,7 @@ try {
   check(answered >= 2, 'the page kept drawing frames while the worker meshed',
     `${answered} frames, longest wait ${maxGap} ms, ${Date.now() - t0} ms in all`);
 
-  // 6. The screenshot for the docs: the example meshed, the trace half-way.
+  // 6. The screenshot for the docs: the example meshed, its trace ready to step through.
   if (opt.screenshot) {
     await page.click('input[name=tool][value=pan]');
     await setSwitches({ cdt: 'fast', angle: '30', area: '0.05', trace: traceSupported });
