@@ -19,6 +19,7 @@
 #include "deltamesh/triangulate.hpp"
 #include "deltamesh/validate.hpp"
 #include "test_adversarial_util.hpp"
+#include "mesh/editor.hpp"
 
 namespace dm = deltamesh;
 
@@ -205,8 +206,8 @@ TEST(Regress, RefineReservesNoMoreThanTheBudgetAllows) {
   const dm::RefineStats st = dm::refine(m, ro);
   EXPECT_TRUE(st.budget_exhausted) << st.summary();
   EXPECT_TRUE(dm::check(m, {.convex_hull = false}).ok());
-  EXPECT_LE(m.tri_v_mut().capacity(), 3 * (before + 2 * 20 + 64));
-  EXPECT_LE(m.points_mut().capacity(), m.num_vertices() + 64);
+  EXPECT_LE(deltamesh::detail::MeshEditor(m).triangle_vertices().capacity(), 3 * (before + 2 * 20 + 64));
+  EXPECT_LE(deltamesh::detail::MeshEditor(m).points().capacity(), m.num_vertices() + 64);
 }
 
 TEST(Regress, RefineBoundarySplitPointStaysInsideItsPiece) {

@@ -18,6 +18,7 @@
 #include "deltamesh/refine.hpp"
 #include "deltamesh/triangulate.hpp"
 #include "deltamesh/validate.hpp"
+#include "mesh/editor.hpp"
 
 using namespace deltamesh;
 
@@ -246,8 +247,8 @@ TEST(InsertSegments, NonConvexMeshWithoutBoundarySegments) {
   }
   Mesh m = triangulate(poly);
   // Forget the segments: a mesh as another tool would give it.
-  m.edge_flags_mut().clear();
-  m.edge_markers_mut().clear();
+  deltamesh::detail::MeshEditor(m).edge_flags().clear();
+  deltamesh::detail::MeshEditor(m).edge_markers().clear();
   ASSERT_EQ(constrained_edges(m), 0u);
   const auto tris = triangles(m);
   EXPECT_THROW(insert_segments(m, std::vector<Segment>{{id(4, 2), id(2, 4), 0}}), SegmentError);  // the notch

@@ -2,10 +2,16 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdint>
+#include <ranges>
+#include <set>
+#include <utility>
+#include <vector>
 
 #include "deltamesh/delaunay.hpp"
 #include "deltamesh/mesh.hpp"
 #include "deltamesh/validate.hpp"
+#include "mesh/editor.hpp"
 
 using namespace deltamesh;
 
@@ -109,7 +115,7 @@ TEST(Mesh, ValidatorCatchesBrokenMeshes) {
   }
   {  // asymmetric twins
     Mesh m = square();
-    m.twin_mut()[0] = 4;
+    deltamesh::detail::MeshEditor(m).twins()[0] = 4;
     EXPECT_FALSE(check(m).ok());
   }
   {  // non-Delaunay diagonal: a long thin quad split the wrong way
@@ -144,7 +150,7 @@ TEST(Mesh, ValidatorCatchesBrokenMeshes) {
   }
   {  // out-edge of a vertex pointing elsewhere
     Mesh m = square();
-    m.vert_edge_mut()[1] = m.out_edge(3);
+    deltamesh::detail::MeshEditor(m).out_edges()[1] = m.out_edge(3);
     EXPECT_FALSE(check(m).ok());
   }
 }
@@ -216,4 +222,45 @@ TEST(Mesh, ValidatorAcceptsAPinchVertexWithOneFanPerBoundaryEdge) {
   bad.add_triangle(0, 1, 3);
   bad.compact();
   EXPECT_FALSE(check(bad, o).ok());
+}
+
+// The ranges skip dead and ghost slots, name each edge once, and agree with
+// Euler's formula for a triangulation of a convex point set.
+TEST(Mesh, RangesVisitRealTrianglesEdgesAndBoundaryOnce) {
+  static_assert(std::ranges::forward_range<decltype(std::declval<const Mesh&>().triangles())>);
+  std::vector<Point> pts;
+  std::uint32_t s = 12345;
+  for (int i = 0; i < 200; ++i) {
+    s = s * 1664525u + 1013904223u;
+    const double x = (s >> 8) / double(1 << 24);
+    s = s * 1664525u + 1013904223u;
+    pts.push_back({x, (s >> 8) / double(1 << 24)});
+  }
+  for (const bool ghosts : {false, true}) {
+    DelaunayOptions opt;
+    opt.keep_ghosts = ghosts;
+    Mesh m = delaunay(pts, opt);
+    CheckOptions co;
+    ASSERT_TRUE(check(m, co).ok()) << check(m, co).summary();
+    std::vector<TriId> by_hand;
+    for (TriId t = 0; t < m.num_triangle_slots(); ++t)
+      if (m.is_real(t)) by_hand.push_back(t);
+    const std::vector<TriId> ranged(m.triangles().begin(), m.triangles().end());
+    EXPECT_EQ(ranged, by_hand);
+    EXPECT_EQ(ranged.size(), m.num_triangles());
+
+    std::set<std::pair<VertexId, VertexId>> edges, from_triangles, boundary;
+    for (HalfEdgeId e : m.edges())
+      EXPECT_TRUE(edges.insert(std::minmax(m.origin(e), m.dest(e))).second) << "edge named twice";
+    for (TriId t : m.triangles())
+      for (HalfEdgeId e = 3 * t; e < 3 * t + 3; ++e) from_triangles.insert(std::minmax(m.origin(e), m.dest(e)));
+    EXPECT_EQ(edges, from_triangles);
+    for (HalfEdgeId e : m.boundary_edges()) boundary.insert(std::minmax(m.origin(e), m.dest(e)));
+    // Euler for a triangulated convex polygon with V vertices, h on the hull:
+    // E = 3V - 3 - h and T = 2V - 2 - h.
+    const std::size_t V = m.num_vertices(), h = boundary.size();
+    EXPECT_EQ(edges.size(), 3 * V - 3 - h);
+    EXPECT_EQ(m.num_triangles(), 2 * V - 2 - h);
+    EXPECT_EQ(std::ranges::distance(m.vertices()), static_cast<std::ptrdiff_t>(V));
+  }
 }

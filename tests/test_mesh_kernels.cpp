@@ -15,6 +15,7 @@
 #include "mesh/edge_rules.hpp"
 #include "mesh/legalize.hpp"
 #include "mesh/locate.hpp"
+#include "mesh/editor.hpp"
 
 using namespace deltamesh;
 
@@ -203,9 +204,9 @@ TEST(MeshKernels, LegalizationOnRawArraysMatchesTheMeshOperations) {
   EXPECT_GT(flips_a, 0u);
   EXPECT_EQ(flips_a, flips_b);
   EXPECT_TRUE(std::equal(a.triangle_vertices().begin(), a.triangle_vertices().end(), b.triangle_vertices().begin()));
-  EXPECT_EQ(a.edge_markers_mut(), b.edge_markers_mut());
-  EXPECT_EQ(a.edge_flags_mut(), b.edge_flags_mut());
-  EXPECT_EQ(a.vert_edge_mut(), b.vert_edge_mut());
+  EXPECT_EQ(deltamesh::detail::MeshEditor(a).edge_markers(), deltamesh::detail::MeshEditor(b).edge_markers());
+  EXPECT_EQ(deltamesh::detail::MeshEditor(a).edge_flags(), deltamesh::detail::MeshEditor(b).edge_flags());
+  EXPECT_EQ(deltamesh::detail::MeshEditor(a).out_edges(), deltamesh::detail::MeshEditor(b).out_edges());
   EXPECT_TRUE(check(a).ok());
 }
 

@@ -24,6 +24,7 @@
 #include "deltamesh/triangle_io.hpp"
 #include "io/atomic_file.hpp"
 #include "io/text_reader.hpp"
+#include "mesh/editor.hpp"
 
 using namespace deltamesh;
 namespace fs = std::filesystem;
@@ -450,8 +451,8 @@ TEST_F(TriangleIo, MissingInputFileIsIoError) {
 
 TEST_F(TriangleIo, NodeRoundTripWithAttributesAndMarkers) {
   Mesh m = grid_mesh(3, 2);
-  m.points_mut()[4] = {0.1, 1.0 / 3.0};  // shortest round-trip formatting must be exact
-  m.points_mut()[5] = {-1e-300, 12345678.90123};
+  deltamesh::detail::MeshEditor(m).points()[4] = {0.1, 1.0 / 3.0};  // shortest round-trip formatting must be exact
+  deltamesh::detail::MeshEditor(m).points()[5] = {-1e-300, 12345678.90123};
   m.set_num_vertex_attributes(2);
   for (std::size_t v = 0; v < m.num_vertices(); ++v) {
     m.vertex_attributes().push_back(static_cast<double>(v) / 7.0);

@@ -3,7 +3,10 @@
 // Topology only: no Delaunay knowledge lives here.
 #pragma once
 #include <array>
+#include <cstddef>
 #include <cstdint>
+#include <iterator>
+#include <ranges>
 #include <span>
 #include <string>
 #include <vector>
@@ -11,6 +14,10 @@
 #include "deltamesh/geometry.hpp"
 
 namespace deltamesh {
+
+namespace detail {
+class MeshEditor;  // raw array access for the library's own hot loops (not installed)
+}
 
 // Where a point lies relative to the triangulation (result of Mesh::locate).
 struct Location {
@@ -31,6 +38,73 @@ struct Location {
 enum EdgeFlag : std::uint8_t {
   kConstrained = 1,  // part of an input segment: never flipped
 };
+
+// Ids in [0, end) that a filter accepts, as a forward range: what
+// Mesh::triangles(), edges() and boundary_edges() return, so that the skipping
+// of dead and ghost slots is written once.
+template <class M, class Filter>
+class FilteredIds {
+ public:
+  class iterator {
+   public:
+    using value_type = std::uint32_t;
+    using difference_type = std::ptrdiff_t;
+    iterator() = default;
+    iterator(const M* m, std::uint32_t i, std::uint32_t end) : m_(m), i_(i), end_(end) { skip(); }
+    std::uint32_t operator*() const { return i_; }
+    iterator& operator++() {
+      ++i_;
+      skip();
+      return *this;
+    }
+    iterator operator++(int) {
+      iterator old = *this;
+      ++*this;
+      return old;
+    }
+    bool operator==(const iterator& o) const { return i_ == o.i_; }
+
+   private:
+    void skip() {
+      while (i_ < end_ && !Filter{}(*m_, i_)) ++i_;
+    }
+    const M* m_ = nullptr;
+    std::uint32_t i_ = 0, end_ = 0;
+  };
+  FilteredIds(const M& m, std::uint32_t end) : m_(&m), end_(end) {}
+  iterator begin() const { return iterator(m_, 0, end_); }
+  iterator end() const { return iterator(m_, end_, end_); }
+
+ private:
+  const M* m_;
+  std::uint32_t end_;
+};
+
+namespace mesh_filters {
+struct RealTriangle {
+  template <class M>
+  bool operator()(const M& m, TriId t) const { return m.is_real(t); }
+};
+// A half-edge of a real triangle whose other side holds no real triangle.
+struct BoundaryEdge {
+  template <class M>
+  bool operator()(const M& m, HalfEdgeId e) const {
+    if (!m.is_real(tri_of(e))) return false;
+    const HalfEdgeId t = m.twin(e);
+    return t == kNone || !m.is_real(tri_of(t));
+  }
+};
+// Each edge of the real triangles once: the boundary half-edge, or the lower
+// id of an interior pair.
+struct Edge {
+  template <class M>
+  bool operator()(const M& m, HalfEdgeId e) const {
+    if (!m.is_real(tri_of(e))) return false;
+    const HalfEdgeId t = m.twin(e);
+    return t == kNone || !m.is_real(tri_of(t)) || e < t;
+  }
+};
+}  // namespace mesh_filters
 
 class Mesh {
  public:
@@ -55,6 +129,23 @@ class Mesh {
   }
   // Flat vertex array, 3 per triangle slot (raw: may contain kNone/kInfinite).
   std::span<const VertexId> triangle_vertices() const { return tri_v_; }
+
+  // ---- ranges: for (TriId t : mesh.triangles()) ... -------------------------
+  // Live real triangles in slot order (dead and ghost slots skipped).
+  FilteredIds<Mesh, mesh_filters::RealTriangle> triangles() const {
+    return {*this, static_cast<std::uint32_t>(num_triangle_slots())};
+  }
+  // One half-edge per edge of the real triangles, in half-edge order.
+  FilteredIds<Mesh, mesh_filters::Edge> edges() const {
+    return {*this, static_cast<std::uint32_t>(tri_v_.size())};
+  }
+  // The half-edges of real triangles with no real triangle across (the
+  // domain's boundary, holes included), in half-edge order.
+  FilteredIds<Mesh, mesh_filters::BoundaryEdge> boundary_edges() const {
+    return {*this, static_cast<std::uint32_t>(tri_v_.size())};
+  }
+  // Every vertex id, used or not.
+  auto vertices() const { return std::views::iota(VertexId{0}, static_cast<VertexId>(points_.size())); }
 
   VertexId origin(HalfEdgeId e) const { return tri_v_[e]; }
   VertexId dest(HalfEdgeId e) const { return tri_v_[next_edge(e)]; }
@@ -157,20 +248,6 @@ class Mesh {
   void compact();
   bool compacted() const { return compacted_; }
 
-  // ---- bulk access for algorithm code (src/algo) ----------------------------
-  // The flat arrays, for loops that are hot enough to matter. Algorithms keep
-  // the invariants the validator checks.
-  std::vector<Point>& points_mut() { return points_; }
-  std::vector<VertexId>& tri_v_mut() { return tri_v_; }
-  std::vector<HalfEdgeId>& twin_mut() { return twin_; }
-  std::vector<HalfEdgeId>& vert_edge_mut() { return vert_edge_; }
-  std::vector<std::uint8_t>& edge_flags_mut() { return edge_flags_; }
-  std::vector<int>& edge_markers_mut() { return edge_markers_; }
-  // Recounts live real triangles after bulk edits through the *_mut arrays.
-  void recount();
-  void set_live_real(std::size_t n) { live_real_ = n; }
-  std::size_t live_real() const { return live_real_; }
-
   // Bytes held by the mesh's arrays (capacity), for memory reports.
   std::size_t memory_bytes() const;
 
@@ -202,6 +279,8 @@ class Mesh {
   std::vector<VertexId> remove_unused_vertices();
 
  private:
+  friend class detail::MeshEditor;
+  void recount();
   void copy_triangle_data(TriId from, TriId to);
   void note_added(TriId t) {
     if (!is_ghost(t)) ++live_real_;

@@ -17,6 +17,7 @@
 #include "deltamesh/predicates.hpp"
 #include "core/expansion.hpp"
 #include "mesh/locate.hpp"
+#include "mesh/editor.hpp"
 
 namespace deltamesh {
 
@@ -67,12 +68,12 @@ CdtBuilder::CdtBuilder(Mesh& mesh, const Pslg& pslg, const CdtOptions& options, 
       pslg_(pslg),
       opt_(options),
       st_(stats),
-      pts_(mesh.points_mut()),
-      tv_(mesh.tri_v_mut()),
-      tw_(mesh.twin_mut()),
-      flags_(mesh.edge_flags_mut()),
-      seg_of_(mesh.edge_markers_mut()),
-      ve_(mesh.vert_edge_mut()),
+      pts_(detail::MeshEditor(mesh).points()),
+      tv_(detail::MeshEditor(mesh).triangle_vertices()),
+      tw_(detail::MeshEditor(mesh).twins()),
+      flags_(detail::MeshEditor(mesh).edge_flags()),
+      seg_of_(detail::MeshEditor(mesh).edge_markers()),
+      ve_(detail::MeshEditor(mesh).out_edges()),
       inserter_(mesh) {
   // Both per-half-edge arrays exist from now on, so the mesh's topological
   // operations keep them in step.
@@ -416,9 +417,9 @@ bool long_segments(const Pslg& pslg) {
 
 // Relabels vertex `from` as `to` around its fan.
 void relabel(Mesh& mesh, VertexId from, VertexId to) {
-  std::vector<VertexId>& tv = mesh.tri_v_mut();
-  std::vector<HalfEdgeId>& ve = mesh.vert_edge_mut();
-  const std::vector<HalfEdgeId>& tw = mesh.twin_mut();
+  std::vector<VertexId>& tv = detail::MeshEditor(mesh).triangle_vertices();
+  std::vector<HalfEdgeId>& ve = detail::MeshEditor(mesh).out_edges();
+  const std::vector<HalfEdgeId>& tw = detail::MeshEditor(mesh).twins();
   const HalfEdgeId start = ve[from];
   HalfEdgeId e = start;
   do {
@@ -449,8 +450,8 @@ void claim_crossing_vertices(Mesh& mesh, std::vector<VertexId>& first_copy) {
     first_copy[v] = claimant[s - n];
   }
   if (!any) return;
-  std::vector<Point>& pts = mesh.points_mut();
-  std::vector<HalfEdgeId>& ve = mesh.vert_edge_mut();
+  std::vector<Point>& pts = detail::MeshEditor(mesh).points();
+  std::vector<HalfEdgeId>& ve = detail::MeshEditor(mesh).out_edges();
   std::size_t end = total;
   for (std::size_t h = n; h < end; ++h) {
     if (ve[h] != kNone) continue;  // still used

@@ -23,6 +23,7 @@
 #include "mesh/legalize.hpp"
 #include "mesh/locate.hpp"
 #include "mesh/split.hpp"
+#include "mesh/editor.hpp"
 
 namespace deltamesh::detail {
 
@@ -148,7 +149,7 @@ void CdtBuilder::release_slots() {
     if (ids_) seg_of_.resize(3 * next_slot_);
   }
   reserved_slots_ = next_slot_ = 0;
-  mesh_.recount();
+  detail::MeshEditor(mesh_).recount();
 }
 
 // Triangle t = (a, b, c), or a ghost, split at v into (a, b, v) in t and
@@ -215,15 +216,15 @@ bool chain_order_cdt(Mesh& mesh, const Pslg& pslg, const CdtOptions& options, Cd
   if (i2 >= n) return false;  // the classic path reports it
 
   mesh = Mesh();
-  mesh.points_mut().assign(pts.begin(), pts.end());
-  mesh.vert_edge_mut().assign(n, kNone);
+  detail::MeshEditor(mesh).points().assign(pts.begin(), pts.end());
+  detail::MeshEditor(mesh).out_edges().assign(n, kNone);
   mesh.reserve(n, 2 * n + 2);
-  mesh.edge_flags_mut().reserve(6 * n + 6);
-  mesh.edge_markers_mut().reserve(6 * n + 6);
+  detail::MeshEditor(mesh).edge_flags().reserve(6 * n + 6);
+  detail::MeshEditor(mesh).edge_markers().reserve(6 * n + 6);
   VertexId v0 = order[0], v1 = order[i1], v2 = order[i2];
   if (orient2d(pts[v0], pts[v1], pts[v2]) < 0) std::swap(v1, v2);
   make_first_triangle(mesh, v0, v1, v2);
-  mesh.recount();
+  detail::MeshEditor(mesh).recount();
 
   first_copy.assign(n, kNone);
   CdtBuilder builder(mesh, pslg, options, st);

@@ -15,6 +15,7 @@
 #include "mesh/legalize.hpp"
 #include "mesh/locate.hpp"
 #include "mesh/split.hpp"
+#include "mesh/editor.hpp"
 
 namespace deltamesh {
 
@@ -32,16 +33,16 @@ double seconds_since(Clock::time_point t0) {
 class BulkBuilder {
  public:
   BulkBuilder(Mesh& mesh, std::size_t max_triangles)
-      : mesh_(mesh), used_(mesh.tri_v_mut().size()), p_(mesh.points().data()) {
-    mesh.tri_v_mut().resize(3 * max_triangles);
-    mesh.twin_mut().resize(3 * max_triangles);
-    v_ = mesh.tri_v_mut().data();
-    tw_ = mesh.twin_mut().data();
+      : mesh_(mesh), used_(detail::MeshEditor(mesh).triangle_vertices().size()), p_(mesh.points().data()) {
+    detail::MeshEditor(mesh).triangle_vertices().resize(3 * max_triangles);
+    detail::MeshEditor(mesh).twins().resize(3 * max_triangles);
+    v_ = detail::MeshEditor(mesh).triangle_vertices().data();
+    tw_ = detail::MeshEditor(mesh).twins().data();
     stack_.reserve(64);
   }
   ~BulkBuilder() {
-    mesh_.tri_v_mut().resize(used_);
-    mesh_.twin_mut().resize(used_);
+    detail::MeshEditor(mesh_).triangle_vertices().resize(used_);
+    detail::MeshEditor(mesh_).twins().resize(used_);
   }
   BulkBuilder(const BulkBuilder&) = delete;
   BulkBuilder& operator=(const BulkBuilder&) = delete;
@@ -122,9 +123,9 @@ Mesh delaunay(std::span<const Point> points, const DelaunayOptions& options, Del
   auto t0 = Clock::now();
   // Build on a copy in insertion order, so the walk touches nearby memory.
   Mesh mesh;
-  std::vector<VertexId> order = detail::hilbert_order(points, &mesh.points_mut());
+  std::vector<VertexId> order = detail::hilbert_order(points, &detail::MeshEditor(mesh).points());
 
-  mesh.vert_edge_mut().assign(n, kNone);
+  detail::MeshEditor(mesh).out_edges().assign(n, kNone);
   if (stats) stats->sort_seconds = seconds_since(t0);
   t0 = Clock::now();
 
@@ -161,12 +162,12 @@ Mesh delaunay(std::span<const Point> points, const DelaunayOptions& options, Del
       if (got != v) dups.emplace_back(v, got);
     }
   }
-  mesh.recount();
+  detail::MeshEditor(mesh).recount();
   if (stats) stats->insert_seconds = seconds_since(t0);
 
   if (options.keep_ghosts) {
-    std::vector<HalfEdgeId>& ve = mesh.vert_edge_mut();
-    const std::vector<VertexId>& tv = mesh.tri_v_mut();
+    std::vector<HalfEdgeId>& ve = detail::MeshEditor(mesh).out_edges();
+    const std::vector<VertexId>& tv = detail::MeshEditor(mesh).triangle_vertices();
     for (HalfEdgeId e = 0; e < tv.size(); ++e)
       if (tv[e] < n) ve[tv[e]] = e;
   } else {
@@ -174,15 +175,15 @@ Mesh delaunay(std::span<const Point> points, const DelaunayOptions& options, Del
   }
 
   // Back to input numbering: vertex ids become input indices.
-  for (VertexId& v : mesh.tri_v_mut())
+  for (VertexId& v : detail::MeshEditor(mesh).triangle_vertices())
     if (v < n) v = order[v];
   {
-    std::vector<HalfEdgeId>& ve = mesh.vert_edge_mut();
+    std::vector<HalfEdgeId>& ve = detail::MeshEditor(mesh).out_edges();
     std::vector<HalfEdgeId> moved(n);
     for (std::size_t k = 0; k < n; ++k) moved[order[k]] = ve[k];
     ve.swap(moved);
   }
-  mesh.points_mut().assign(points.begin(), points.end());
+  detail::MeshEditor(mesh).points().assign(points.begin(), points.end());
   if (stats) {
     stats->duplicates = dups.size();
     stats->duplicate_of.assign(n, kNone);
@@ -194,9 +195,9 @@ Mesh delaunay(std::span<const Point> points, const DelaunayOptions& options, Del
     std::vector<VertexId> first(n);
     for (VertexId v = 0; v < n; ++v) first[v] = v;
     for (const auto& [d, kept] : dups) first[order[kept]] = std::min(first[order[kept]], order[d]);
-    for (VertexId& v : mesh.tri_v_mut())
+    for (VertexId& v : detail::MeshEditor(mesh).triangle_vertices())
       if (v < n) v = first[v];
-    std::vector<HalfEdgeId>& ve = mesh.vert_edge_mut();
+    std::vector<HalfEdgeId>& ve = detail::MeshEditor(mesh).out_edges();
     for (const auto& [d, kept] : dups) {
       const VertexId k = order[kept];
       if (first[k] != k && ve[k] != kNone) {

@@ -28,6 +28,7 @@
 #include "deltamesh/triangulate.hpp"
 #include "mesh/edge_rules.hpp"
 #include "mesh/locate.hpp"
+#include "mesh/editor.hpp"
 
 namespace deltamesh {
 
@@ -182,7 +183,7 @@ Closed close_mesh(const Mesh& m) {
       if (pass == 0) c.filler.push_back(g);
     }
   // Twins: the mesh's own; the rest matched by their undirected edge.
-  std::vector<HalfEdgeId>& tw = out.twin_mut();
+  std::vector<HalfEdgeId>& tw = detail::MeshEditor(out).twins();
   for (HalfEdgeId e = 0; e < 3 * nt; ++e) tw[e] = m.twin(e);
   struct Key {
     std::uint64_t edge;
@@ -210,8 +211,8 @@ Closed close_mesh(const Mesh& m) {
 bool stays_inside(Mesh& c, std::size_t inside, VertexId a, VertexId b) {
   const Point pa = c.point(a), pb = c.point(b);
   auto in = [&](HalfEdgeId e) { return tri_of(e) < inside; };
-  const VertexId* tv = c.tri_v_mut().data();
-  const HalfEdgeId* tw = c.twin_mut().data();
+  const VertexId* tv = detail::MeshEditor(c).triangle_vertices().data();
+  const HalfEdgeId* tw = detail::MeshEditor(c).twins().data();
   const Point* pts = c.points().data();
   const std::size_t limit = c.triangle_vertices().size() + 3;
   VertexId cur = a;
@@ -297,8 +298,8 @@ void insert_segments(Mesh& mesh, std::span<const Segment> segments, const Insert
     Pslg work;
     work.points.assign(mesh.points().begin(), mesh.points().end());
     work.segments.assign(segments.begin(), segments.end());
-    std::vector<std::uint8_t>& flags = cm.edge_flags_mut();
-    std::vector<int>& ids = cm.edge_markers_mut();
+    std::vector<std::uint8_t>& flags = detail::MeshEditor(cm).edge_flags();
+    std::vector<int>& ids = detail::MeshEditor(cm).edge_markers();
     flags.assign(cm.triangle_vertices().size(), 0);
     ids.assign(cm.triangle_vertices().size(), 0);
     auto constrain = [&](HalfEdgeId e, std::size_t index) {
@@ -356,8 +357,8 @@ void insert_segments(Mesh& mesh, std::span<const Segment> segments, const Insert
         if ((flags[e] & kConstrained) && static_cast<std::size_t>(ids[e]) >= fill_base) release.push_back(e);
       builder.finish();
       for (HalfEdgeId e : release) {
-        cm.edge_flags_mut()[e] &= static_cast<std::uint8_t>(~kConstrained);
-        if (cm.has_edge_markers()) cm.edge_markers_mut()[e] = 0;
+        detail::MeshEditor(cm).edge_flags()[e] &= static_cast<std::uint8_t>(~kConstrained);
+        if (cm.has_edge_markers()) detail::MeshEditor(cm).edge_markers()[e] = 0;
       }
     }
     const std::size_t slots = cm.num_triangle_slots();
@@ -367,8 +368,8 @@ void insert_segments(Mesh& mesh, std::span<const Segment> segments, const Insert
     cm.compact();
     if (!cm.has_edge_markers() && cm.has_edge_flags()) {
       bool any = false;
-      for (std::uint8_t f : cm.edge_flags_mut()) any = any || f != 0;
-      if (!any) cm.edge_flags_mut().clear();
+      for (std::uint8_t f : detail::MeshEditor(cm).edge_flags()) any = any || f != 0;
+      if (!any) detail::MeshEditor(cm).edge_flags().clear();
     }
     // The vertex data goes along; added vertices get theirs below.
     cm.vertex_markers() = std::move(mesh.vertex_markers());

@@ -15,8 +15,7 @@ MidpointNodes midpoint_nodes(const Mesh& mesh) {
   const std::vector<double>& attr = mesh.vertex_attributes();
   out.tri_nodes.assign(3 * slots, kNone);
   const auto base = static_cast<VertexId>(mesh.num_vertices());
-  for (TriId t = 0; t < slots; ++t) {
-    if (!mesh.is_real(t)) continue;
+  for (TriId t : mesh.triangles()) {
     for (int i = 0; i < 3; ++i) {
       const HalfEdgeId e = 3 * t + i;
       // Half-edge i runs from corner i to corner i+1: opposite corner i+2.
@@ -50,9 +49,7 @@ std::vector<VertexId> add_midpoint_nodes(Mesh& mesh) {
     // 1 on the boundary, 0 elsewhere.
     const std::size_t given = markers.size();
     markers.resize(n0, 0);
-    const std::size_t slots = mesh.num_triangle_slots();
-    for (TriId t = 0; t < slots; ++t) {
-      if (!mesh.is_real(t)) continue;
+    for (TriId t : mesh.triangles()) {
       for (HalfEdgeId e = 3 * t; e < 3 * t + 3; ++e) {
         if (real_twin(mesh, e) != kNone) continue;
         for (const VertexId v : {mesh.origin(e), mesh.dest(e)})

@@ -122,9 +122,7 @@ void carry_vertex_data(Mesh& mesh, const Pslg& pslg, bool use_segments) {
 std::size_t count_constrained_edges(const Mesh& mesh) {
   std::size_t count = 0;
   if (!mesh.has_edge_flags()) return 0;
-  const std::size_t slots = mesh.num_triangle_slots();
-  for (TriId t = 0; t < slots; ++t) {
-    if (!mesh.is_real(t)) continue;
+  for (TriId t : mesh.triangles()) {
     for (HalfEdgeId e = 3 * t; e < 3 * t + 3; ++e) {
       if (!mesh.is_constrained(e)) continue;
       const HalfEdgeId f = real_twin(mesh, e);
@@ -143,12 +141,10 @@ void finish_vertex_markers(Mesh& mesh) {
   markers.resize(mesh.num_vertices(), 0);
   const std::size_t na = mesh.num_vertex_attributes();
   mesh.vertex_attributes().resize(mesh.num_vertices() * na, 0.0);
-  const std::size_t slots = mesh.num_triangle_slots();
   // A vertex on a segment with a nonzero marker (one added on a segment
   // after carry_vertex_data, say) takes it ...
   if (mesh.has_edge_markers()) {
-    for (TriId t = 0; t < slots; ++t) {
-      if (!mesh.is_real(t)) continue;
+    for (TriId t : mesh.triangles()) {
       for (HalfEdgeId e = 3 * t; e < 3 * t + 3; ++e) {
         const int m = mesh.edge_marker(e);
         if (m == 0 || !mesh.is_constrained(e)) continue;
@@ -158,8 +154,7 @@ void finish_vertex_markers(Mesh& mesh) {
     }
   }
   // ... and a vertex still at 0 on the boundary gets 1.
-  for (TriId t = 0; t < slots; ++t) {
-    if (!mesh.is_real(t)) continue;
+  for (TriId t : mesh.triangles()) {
     for (HalfEdgeId e = 3 * t; e < 3 * t + 3; ++e) {
       if (real_twin(mesh, e) != kNone) continue;
       if (markers[mesh.origin(e)] == 0) markers[mesh.origin(e)] = 1;

@@ -100,8 +100,7 @@ class Checker {
   }
 
   void check_orientation() {
-    for (TriId t = 0; t < mesh_.num_triangle_slots(); ++t) {
-      if (!mesh_.is_real(t)) continue;
+    for (TriId t : mesh_.triangles()) {
       ++rep_.triangles;
       const auto v = mesh_.triangle(t);
       if (v[0] == v[1] || v[1] == v[2] || v[0] == v[2]) {
@@ -164,16 +163,14 @@ class Checker {
   void check_vertex_edges() {
     const std::size_t nv = mesh_.num_vertices();
     std::vector<std::uint32_t> incident(nv, 0);
-    for (TriId t = 0; t < mesh_.num_triangle_slots(); ++t) {
-      if (!mesh_.is_real(t)) continue;
+    for (TriId t : mesh_.triangles()) {
       for (VertexId v : mesh_.triangle(t)) ++incident[v];
     }
     // Boundary out-edges per vertex: a carved mesh may pinch at a vertex
     // (two holes touching there), which then has one fan per boundary edge.
     std::vector<HalfEdgeId> first_boundary(nv, kNone), next_boundary_out;
     next_boundary_out.assign(mesh_.triangle_vertices().size(), kNone);
-    for (TriId t = 0; t < mesh_.num_triangle_slots(); ++t) {
-      if (!mesh_.is_real(t)) continue;
+    for (TriId t : mesh_.triangles()) {
       for (int i = 0; i < 3; ++i) {
         const HalfEdgeId e = 3 * t + i;
         if (!on_boundary(e)) continue;
@@ -237,8 +234,7 @@ class Checker {
   }
 
   void check_delaunay() {
-    for (TriId t = 0; t < mesh_.num_triangle_slots(); ++t) {
-      if (!mesh_.is_real(t)) continue;
+    for (TriId t : mesh_.triangles()) {
       for (int i = 0; i < 3; ++i) {
         const HalfEdgeId e = 3 * t + i;
         const HalfEdgeId f = real_twin(mesh_, e);
@@ -266,8 +262,7 @@ class Checker {
 
   void check_boundary_and_euler() {
     std::size_t edges = 0, boundary = 0;
-    for (TriId t = 0; t < mesh_.num_triangle_slots(); ++t) {
-      if (!mesh_.is_real(t)) continue;
+    for (TriId t : mesh_.triangles()) {
       for (int i = 0; i < 3; ++i) {
         const HalfEdgeId e = 3 * t + i;
         if (on_boundary(e)) {
@@ -282,8 +277,7 @@ class Checker {
     // Walk boundary loops; check convexity where asked.
     std::vector<char> done(3 * mesh_.num_triangle_slots(), 0);
     std::size_t loops = 0;
-    for (TriId t = 0; t < mesh_.num_triangle_slots(); ++t) {
-      if (!mesh_.is_real(t)) continue;
+    for (TriId t : mesh_.triangles()) {
       for (int i = 0; i < 3; ++i) {
         const HalfEdgeId start = 3 * t + i;
         if (done[start] || !on_boundary(start)) continue;
@@ -350,8 +344,7 @@ class Checker {
     // Constrained edges as adjacency lists (CSR), each edge once per end.
     std::vector<std::uint32_t> start(nv + 1, 0);
     auto for_each_constrained = [&](auto&& emit) {
-      for (TriId t = 0; t < slots; ++t) {
-        if (!mesh_.is_real(t)) continue;
+      for (TriId t : mesh_.triangles()) {
         for (int i = 0; i < 3; ++i) {
           const HalfEdgeId e = 3 * t + i;
           if (!mesh_.is_constrained(e)) continue;

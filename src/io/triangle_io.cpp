@@ -547,8 +547,7 @@ void write_ele(const Mesh& mesh, const std::string& path, const TriangleWriteOpt
   out.put(six ? " 6" : " 3");
   out.field_int(static_cast<long long>(na));
   out.put('\n');
-  for (TriId t = 0; t < slots; ++t) {
-    if (!mesh.is_real(t)) continue;
+  for (TriId t : mesh.triangles()) {
     out.put_int(static_cast<long long>(num(t)) + opt.first_index);
     for (const VertexId v : mesh.triangle(t)) out.field_int(static_cast<long long>(v) + opt.first_index);
     if (six)
@@ -586,9 +585,7 @@ void write_neigh(const Mesh& mesh, const std::string& path, const TriangleWriteO
   const TriNumbering num = number_triangles(mesh);
   out.put_int(static_cast<long long>(num.count));
   out.put(" 3\n");
-  const std::size_t slots = mesh.num_triangle_slots();
-  for (TriId t = 0; t < slots; ++t) {
-    if (!mesh.is_real(t)) continue;
+  for (TriId t : mesh.triangles()) {
     out.put_int(static_cast<long long>(num(t)) + opt.first_index);
     for (HalfEdgeId i = 0; i < 3; ++i) {
       // Neighbour i is opposite vertex i, across half-edge 3t + (i+1)%3.

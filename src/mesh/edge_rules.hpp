@@ -49,9 +49,7 @@ inline int edge_output_marker(const Mesh& m, HalfEdgeId e, HalfEdgeId tw) {
 // half-edge with no real twin (boundary = true), or the lower of the two.
 template <class F>
 void for_each_edge(const Mesh& m, F&& f) {
-  const std::size_t slots = m.num_triangle_slots();
-  for (TriId t = 0; t < slots; ++t) {
-    if (!m.is_real(t)) continue;
+  for (TriId t : m.triangles()) {
     for (HalfEdgeId e = 3 * t; e < 3 * t + 3; ++e) {
       const HalfEdgeId tw = real_twin(m, e);
       if (tw == kNone || e < tw) f(e, tw == kNone);

@@ -6,6 +6,7 @@
 
 #include "deltamesh/geometry.hpp"
 #include "deltamesh/mesh.hpp"
+#include "mesh/editor.hpp"
 
 namespace deltamesh::detail {
 
@@ -26,11 +27,11 @@ struct MeshArrays {
   // arrays reallocate.
   static MeshArrays of(Mesh& m) {
     MeshArrays a;
-    a.tv = m.tri_v_mut().data();
-    a.tw = m.twin_mut().data();
-    a.flags = m.edge_flags_mut().empty() ? nullptr : m.edge_flags_mut().data();
-    a.markers = m.edge_markers_mut().empty() ? nullptr : m.edge_markers_mut().data();
-    a.out = m.vert_edge_mut().data();
+    a.tv = detail::MeshEditor(m).triangle_vertices().data();
+    a.tw = detail::MeshEditor(m).twins().data();
+    a.flags = detail::MeshEditor(m).edge_flags().empty() ? nullptr : detail::MeshEditor(m).edge_flags().data();
+    a.markers = detail::MeshEditor(m).edge_markers().empty() ? nullptr : detail::MeshEditor(m).edge_markers().data();
+    a.out = detail::MeshEditor(m).out_edges().data();
     a.pts = m.points().data();
     return a;
   }

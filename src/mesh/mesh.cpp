@@ -314,8 +314,7 @@ void Mesh::compact() {
 
 void Mesh::recount() {
   live_real_ = 0;
-  for (TriId t = 0; t < num_triangle_slots(); ++t)
-    if (is_real(t)) ++live_real_;
+  for ([[maybe_unused]] TriId t : triangles()) ++live_real_;
 }
 
 std::size_t Mesh::memory_bytes() const {

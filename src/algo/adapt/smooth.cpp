@@ -13,6 +13,7 @@
 #include "core/angles.hpp"
 #include "deltamesh/adapt.hpp"
 #include "deltamesh/predicates.hpp"
+#include "mesh/editor.hpp"
 
 namespace deltamesh {
 
@@ -162,7 +163,7 @@ class Smoother {
       if (!quality(q, after) || !(after.angle >= angle_floor) || !(after.size <= std::max(1.0, before.size)) ||
           !(after.area <= std::max(1.0, before.area)))
         continue;
-      m_.points_mut()[v] = q;
+      detail::MeshEditor(m_).points()[v] = q;
       return 1;
     }
     ++st_.rejected;

@@ -14,6 +14,7 @@
 #include "deltamesh/mesh.hpp"
 #include "deltamesh/progress.hpp"
 #include "deltamesh/refine.hpp"
+#include "mesh/editor.hpp"
 
 namespace deltamesh::refinement {
 
@@ -77,12 +78,12 @@ class Refiner {
       : m_(mesh),
         opt_(opt),
         st_(st),
-        tv_(mesh.tri_v_mut()),
-        tw_(mesh.twin_mut()),
-        fl_(mesh.edge_flags_mut()),
-        mk_(mesh.edge_markers_mut()),
-        pts_(mesh.points_mut()),
-        ve_(mesh.vert_edge_mut()) {}
+        tv_(detail::MeshEditor(mesh).triangle_vertices()),
+        tw_(detail::MeshEditor(mesh).twins()),
+        fl_(detail::MeshEditor(mesh).edge_flags()),
+        mk_(detail::MeshEditor(mesh).edge_markers()),
+        pts_(detail::MeshEditor(mesh).points()),
+        ve_(detail::MeshEditor(mesh).out_edges()) {}
 
   void run();
 

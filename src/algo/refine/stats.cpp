@@ -6,12 +6,13 @@
 #include <sstream>
 
 #include "algo/refine/refiner.hpp"
+#include "mesh/editor.hpp"
 
 namespace deltamesh::refinement {
 
 // Triangles appended by hand (insert.cpp's new_slot) join the mesh's count.
 void Refiner::count_appended() {
-  m_.set_live_real(m_.live_real() + appended_);
+  detail::MeshEditor(m_).set_live_real(detail::MeshEditor(m_).live_real() + appended_);
   appended_ = 0;
 }
 
