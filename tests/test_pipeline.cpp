@@ -67,6 +67,9 @@ TEST(PipelinePlan, SwitchesDescribeTheRun) {
   EXPECT_EQ(p.refine.steiner, SteinerRule::Offcenter);
   EXPECT_EQ(p.refine.order, RefineOrder::WorstFirst);
   EXPECT_EQ(p.domain.fill, FillRule::EvenOdd);
+
+  EXPECT_EQ(plan_of({"-pq", "x"}).refine.steiner, SteinerRule::Best);
+  EXPECT_EQ(plan_of({"-pq", "--steiner=grid", "x"}).refine.steiner, SteinerRule::Grid);
 }
 
 TEST(PipelinePlan, UsageErrorsNameTheSwitch) {

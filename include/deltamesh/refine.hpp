@@ -33,14 +33,18 @@ enum class SteinerRule {
   Circumcenter,
   // The off-centre when its insertion leaves no skinny triangle; otherwise
   // the point of the shortest edge's petal (where that edge makes a triangle
-  // within the bound) whose insertion leaves the fewest skinny triangles,
-  // found by a coarse grid and a pattern search, each point scored by the
-  // cavity it would make (in the spirit of Erten and Üngör's locally optimal
-  // Steiner points). Next to triangles that break a size bound the off-centre
-  // is used as is. Default: on the corpus 14% (q30) to 19% (q33) fewer
-  // triangles than off-centres, for 2-4 times their refinement time when no
-  // size bound is given and about the same time with one.
+  // within the bound) whose insertion leaves the fewest skinny triangles
+  // (in the spirit of Erten and Üngör's locally optimal Steiner points),
+  // found by a coarse grid and a pattern search, each point scored on the
+  // few triangles whose circumcircle meets the petal, gathered once. Next to
+  // triangles that break a size bound the off-centre is used as is. Default:
+  // on the corpus 15% (q30) to 20% (q33) fewer triangles than Triangle 1.6,
+  // for about twice the off-centres' time (docs/benchmarks.md).
   Best,
+  // The same search with every candidate scored by the cavity it would make
+  // in the mesh (the default until 2026-12): the same points as Best but for
+  // floating-point ties, twice Best's time. Kept to compare rules.
+  Grid,
 };
 
 // When a vertex encroaches upon a subsegment.

@@ -87,7 +87,8 @@ Long options:
                    evenodd (keep odd nesting depth; no hole points needed)
   --strict         crossing segments are an error instead of being split
   --steiner=RULE   refinement's Steiner points: best (default, fewest
-                   triangles), offcenter (quickest) or circumcenter (the
+                   triangles), grid (the same search scored on the mesh,
+                   slower), offcenter (quickest) or circumcenter (the
                    seed's algorithm)
   --encroachment=RULE  lens (default) or circle (the seed's R1): when a
                    vertex near a segment makes it split

@@ -253,7 +253,7 @@ void apply_long_option(CommandLine& cl, std::string_view name_view, std::string_
   } else if (name == "--steiner") {
     const std::string v = std::string(value);
     const auto r = parse_steiner_rule(v);
-    if (!r) throw UsageError{"--steiner=" + v + ": the rule must be best, offcenter or circumcenter"};
+    if (!r) throw UsageError{"--steiner=" + v + ": the rule must be best, grid, offcenter or circumcenter"};
     cl.plan.refine.steiner = *r;
   } else if (name == "--encroachment") {
     const std::string v = std::string(value);

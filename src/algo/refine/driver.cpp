@@ -55,7 +55,7 @@ void Refiner::setup() {
   st_.input_vertices = n_input_;
   const double theta = std::clamp(opt_.min_angle_deg, 0.0, 60.0);
   shortest_first_ = opt_.order == RefineOrder::ShortestEdgeFirst;
-  best_ = opt_.steiner == SteinerRule::Best && theta > 0;
+  best_ = (opt_.steiner == SteinerRule::Best || opt_.steiner == SteinerRule::Grid) && theta > 0;
   lens_ = opt_.encroachment == EncroachmentRule::DiametralLens && !opt_.conforming_delaunay;
   // Beyond the bounds refinement reaches in practice, first refine to
   // kAutomaticBudgetAngle, which terminates, then go on (go_beyond()).
@@ -307,7 +307,8 @@ void Refiner::decide(TriId t, Decision& d) {
     d.reason = Reason::Precision;
     return;
   }
-  if (ev.skinny && !ev.large && best_) d.c = best_point(t, ev, d.c);
+  if (ev.skinny && !ev.large && best_)
+    d.c = opt_.steiner == SteinerRule::Grid ? grid_point(t, ev, d.c) : best_point(t, ev, d.c);
   const Walk w = walk(t, d.c);
   enc_scratch_.clear();
   switch (w.kind) {
@@ -429,6 +430,7 @@ RefineStats refine(Mesh& mesh, const RefineOptions& options) {
 std::string_view to_string(SteinerRule r) {
   switch (r) {
     case SteinerRule::Best: return "best";
+    case SteinerRule::Grid: return "grid";
     case SteinerRule::Offcenter: return "offcenter";
     case SteinerRule::Circumcenter: break;
   }
@@ -439,6 +441,7 @@ std::optional<SteinerRule> parse_steiner_rule(std::string_view name) {
   if (name == "offcenter" || name == "off-center" || name == "offcentre") return SteinerRule::Offcenter;
   if (name == "circumcenter" || name == "circumcentre") return SteinerRule::Circumcenter;
   if (name == "best") return SteinerRule::Best;
+  if (name == "grid") return SteinerRule::Grid;
   return std::nullopt;
 }
 

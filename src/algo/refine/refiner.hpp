@@ -135,7 +135,10 @@ class Refiner {
   // ---- steiner.cpp: where a bad triangle is split ------------------------------
   inline Point steiner_point(TriId t, const Eval& ev, bool& offcenter) const;  // steiner.hpp
   Point best_point(TriId t, const Eval& ev, const Point& primary);
+  Point grid_point(TriId t, const Eval& ev, const Point& primary);
   bool score(TriId t, const Point& c, double min2, int& bad, double& radius2);
+  bool gather_petal(TriId t, const Point& centre, double radius);
+  bool score_local(const Point& c, double min2, int best_bad, double best_r2, int& bad, double& radius2);
 
   // ---- encroachment.cpp: encroachment, and where a segment is split -----------
   // Whether p encroaches upon subsegment ab: inside its diametral lens
@@ -236,7 +239,7 @@ class Refiner {
   bool has_area_bounds_ = false;  // refine for the mesh's per-triangle bounds
   bool carry_bounds_ = false;     // the mesh has per-triangle bounds: keep them on new triangles
   bool shortest_first_ = true;    // queue order
-  bool best_ = false;             // SteinerRule::Best: choose among candidates
+  bool best_ = false;             // SteinerRule::Best or Grid: choose among candidates
   bool sized_ = false;            // some size bound (area or edge length) applies
   double bound_rad_ = 0;          // the angle bound in radians
   bool has_markers_ = false;
@@ -284,6 +287,21 @@ class Refiner {
   std::vector<double> attr_scratch_;
   std::size_t side_split_ = 0;  // split cavities: boundary edges of side one
   Decision decision_;
+  // The best point's neighbourhood (steiner.cpp): the triangles whose
+  // circumcircle meets the petal, with their circles and local neighbours
+  // (>= 0: index in petal_; kOut: a triangle outside; kWall: a segment or
+  // the hull), so that candidates are scored without touching the mesh.
+  struct PetalTri {
+    VertexId v[3];
+    std::int32_t nb[3];
+    double cx, cy, r2;
+  };
+  static constexpr std::int32_t kOut = -1, kWall = -2;
+  std::vector<PetalTri> petal_;
+  std::vector<std::uint32_t> petal_index_;  // per triangle slot in the cavity stamp: its index in petal_
+  std::vector<std::uint32_t> petal_in_;     // per petal_ entry: the candidate stamp when in its cavity
+  std::uint32_t petal_stamp_ = 0;
+  std::vector<std::int32_t> petal_stack_;
 
   std::size_t appended_ = 0;  // triangles appended without Mesh::add_triangle
   Clock::time_point start_;
