@@ -5,7 +5,7 @@ WERROR     ?= OFF
 CMAKE_ARGS ?=
 CLI        := $(BUILD)/bin/deltamesh
 
-.PHONY: all deps configure build demo docs test bench check-long clean test-sanitize fuzz install
+.PHONY: all deps configure build demo docs test bench check-long clean test-sanitize fuzz install web web-serve test-web
 
 all: build
 
@@ -81,5 +81,35 @@ bench: deps
 	@cmake --build $(BUILD)-bench -j $(JOBS)
 	@bench/run.sh $(BUILD)-bench
 
+# The browser app (web/, docs/web.md): the command line compiled to
+# WebAssembly with Debian's emscripten, and the static page, in
+# $(WEB_BUILD)/site. Emscripten's tools run on node and need Debian's JS
+# modules (acorn ...), which a node not from Debian does not see: NODE_PATH.
+WEB_BUILD ?= build-web
+WEB_PORT  ?= 8000
+EMENV     := NODE_PATH=/usr/share/nodejs$(if $(NODE_PATH),:$(NODE_PATH))
+web:
+	@scripts/install-deps.sh web
+	@$(EMENV) emcmake cmake -S . -B $(WEB_BUILD) -DCMAKE_BUILD_TYPE=Release -DDELTAMESH_TESTS=OFF \
+	  -DDELTAMESH_PYTHON=OFF -DDELTAMESH_WERROR=$(WERROR) >/dev/null
+	@$(EMENV) cmake --build $(WEB_BUILD) -j $(JOBS) --target deltamesh_site
+	@echo "web: the page is in $(WEB_BUILD)/site (make web-serve: http://127.0.0.1:$(WEB_PORT)/)"
+
+# Any static file server will do; this is Python's.
+web-serve: web
+	python3 -m http.server -d $(WEB_BUILD)/site -b 127.0.0.1 $(WEB_PORT)
+
+# The page in headless chromium (puppeteer-core, tests/web): the example
+# meshed in the page and by the CLI gives the same numbers, the trace
+# replays to the final mesh, a broken file shows its file:line error, and
+# docs/img/web-app.png is written.
+test-web: web
+	@scripts/install-deps.sh core browser
+	@cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release -DDELTAMESH_WERROR=$(WERROR) $(CMAKE_ARGS) >/dev/null
+	@cmake --build $(BUILD) -j $(JOBS) --target deltamesh_cli
+	@cd tests/web && npm ci --no-audit --no-fund --loglevel=error
+	node tests/web/run.mjs --site $(WEB_BUILD)/site --cli $(CLI) --example examples/plate.poly \
+	  --screenshot docs/img/web-app.png
+
 clean:
-	rm -rf $(BUILD) $(BUILD)-bench out
+	rm -rf $(BUILD) $(BUILD)-bench $(WEB_BUILD) out

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs the Debian packages deltamesh needs, only those that are missing.
-# Usage: scripts/install-deps.sh [core|bench|test-tools]...
+# Usage: scripts/install-deps.sh [core|bench|fuzz|web|browser]...
+# web: emscripten (make web); browser: chromium and npm (make test-web).
 set -euo pipefail
 want=(g++ make cmake libgtest-dev libgmock-dev libbenchmark-dev libgmp-dev libxml2-utils gmsh python3-meshio librsvg2-bin
       nlohmann-json3-dev  # JSON statistics (--stats=json)
@@ -11,6 +12,9 @@ for group in "$@"; do
     core) ;;
     bench) want+=(libcgal-dev) ;;
     fuzz) want+=(clang libclang-rt-14-dev) ;;
+    web) want+=(emscripten) ;;
+    # npm only when there is none: a node installed outside Debian brings its own.
+    browser) want+=(chromium); command -v npm >/dev/null || want+=(npm) ;;
     *) echo "install-deps: unknown group '$group'" >&2; exit 2 ;;
   esac
 done

@@ -124,6 +124,12 @@ struct Edge {
     return t == kNone || !m.is_real(tri_of(t)) || e < t;
   }
 };
+// Every id (Mesh::vertices(); std::views::iota would do, but the libc++ of
+// Emscripten 3.1.6, the web build's, has no iota_view).
+struct AnyId {
+  template <class M>
+  bool operator()(const M&, std::uint32_t) const { return true; }
+};
 }  // namespace mesh_filters
 
 class Mesh {
@@ -165,7 +171,9 @@ class Mesh {
     return {*this, static_cast<std::uint32_t>(tri_v_.size())};
   }
   // Every vertex id, used or not.
-  auto vertices() const { return std::views::iota(VertexId{0}, static_cast<VertexId>(points_.size())); }
+  FilteredIds<Mesh, mesh_filters::AnyId> vertices() const {
+    return {*this, static_cast<std::uint32_t>(points_.size())};
+  }
 
   VertexId origin(HalfEdgeId e) const { return tri_v_[e]; }
   VertexId dest(HalfEdgeId e) const { return tri_v_[next_edge(e)]; }

@@ -94,7 +94,8 @@ inline Diff make_diff(double head, double tail) {
 // Exponents of the leading and of the lowest set bit of a finite nonzero
 // normal double; false for zero, subnormals, infinities and NaN.
 inline bool bit_span(double v, int& lead, int& low) {
-  const auto bits = std::bit_cast<std::uint64_t>(v);
+  // __builtin_bit_cast, not std::bit_cast: Emscripten 3.1.6's libc++ (the web build) lacks the latter.
+  const auto bits = __builtin_bit_cast(std::uint64_t, v);
   const int e = static_cast<int>((bits >> 52) & 0x7ff);
   if (e == 0 || e == 0x7ff) return false;
   const std::uint64_t m = (bits & ((std::uint64_t{1} << 52) - 1)) | (std::uint64_t{1} << 52);

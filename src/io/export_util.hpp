@@ -4,12 +4,14 @@
 #pragma once
 #include <algorithm>
 #include <charconv>
+
 #include <cmath>
 #include <cstdint>
 #include <string_view>
 #include <vector>
 
 #include "core/angles.hpp"
+#include "core/float_chars.hpp"
 #include "deltamesh/mesh.hpp"
 #include "io/atomic_file.hpp"
 #include "mesh/edge_rules.hpp"
@@ -48,7 +50,7 @@ class OutBuffer {
   }
   void put_double(double v) {
     room();
-    n_ = static_cast<std::size_t>(std::to_chars(buf_.data() + n_, buf_.data() + buf_.size(), v).ptr - buf_.data());
+    n_ = static_cast<std::size_t>(chars::shortest(buf_.data() + n_, buf_.data() + buf_.size(), v).ptr - buf_.data());
   }
   // A double that JSON/VTK readers accept: finite values as put_double,
   // with "-0" written as "0".

@@ -1,9 +1,12 @@
 #include "io/geojson_json.hpp"
 
 #include <charconv>
+
 #include <cstdio>
 #include <cmath>
 #include <system_error>
+
+#include "core/float_chars.hpp"
 
 namespace deltamesh {
 
@@ -138,7 +141,7 @@ class Json::Parser {
       while (p_ < n_ && s_[p_] >= '0' && s_[p_] <= '9') ++p_;
     }
     double v = 0.0;
-    const auto r = std::from_chars(s_.data() + start, s_.data() + p_, v);
+    const auto r = chars::parse_double(s_.data() + start, s_.data() + p_, v);
     if (r.ec == std::errc::result_out_of_range) {
       // Underflow to zero is harmless; overflow is not a usable coordinate.
       bool tiny = false;

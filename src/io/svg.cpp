@@ -12,12 +12,14 @@
 #include <algorithm>
 #include <array>
 #include <charconv>
+
 #include <cmath>
 #include <cstdint>
 #include <string>
 #include <vector>
 
 #include "core/angles.hpp"
+#include "core/float_chars.hpp"
 #include "deltamesh/version.hpp"
 #include "deltamesh/voronoi.hpp"
 #include "io/atomic_file.hpp"
@@ -124,7 +126,7 @@ class Grid {
 
 std::string fixed(double v, int decimals) {
   char buf[64];
-  const auto r = std::to_chars(buf, buf + sizeof buf, v, std::chars_format::fixed, decimals);
+  const auto r = chars::fixed(buf, buf + sizeof buf, v, decimals);
   return std::string(buf, r.ptr);
 }
 
@@ -315,8 +317,8 @@ void write_svg(const Mesh& mesh, const std::string& path, const SvgOptions& opt)
     // Two decimals, or three significant digits for tiny angles.
     char buf[32];
     const auto r = min_angle >= 0.1 || min_angle == 0.0
-                       ? std::to_chars(buf, buf + sizeof buf, min_angle, std::chars_format::fixed, 2)
-                       : std::to_chars(buf, buf + sizeof buf, min_angle, std::chars_format::general, 3);
+                       ? chars::fixed(buf, buf + sizeof buf, min_angle, 2)
+                       : chars::general(buf, buf + sizeof buf, min_angle, 3);
     out += ", min angle " + std::string(buf, r.ptr) + "&#176;";
   }
   out += "</text>\n";

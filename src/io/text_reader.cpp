@@ -10,12 +10,14 @@
 #include <bit>
 #include <cerrno>
 #include <charconv>
+
 #include <cmath>
 #include <cstring>
 #include <limits>
 #include <system_error>
 
 #include "core/parallel.hpp"
+#include "core/float_chars.hpp"
 
 namespace deltamesh::io {
 
@@ -215,7 +217,7 @@ NumberStatus parse_double(std::string_view token, double& value) {
   const bool plus = first != last && *first == '+';
   if (plus) ++first;
   if (first == last || (plus && (*first == '+' || *first == '-'))) return NumberStatus::NotANumber;
-  const auto [ptr, ec] = std::from_chars(first, last, value, std::chars_format::general);
+  const auto [ptr, ec] = chars::parse_double(first, last, value);
   if (ptr != last) return NumberStatus::NotANumber;
   if (ec == std::errc::result_out_of_range) return NumberStatus::OutOfRange;
   if (ec != std::errc()) return NumberStatus::NotANumber;
@@ -384,7 +386,7 @@ bool TextReader::try_point_line(long long expected_id, bool with_marker, double&
     skip_blanks();
     const char* end = parse_decimal_prefix(p, stop, *out);
     if (end == nullptr) {
-      const auto d = std::from_chars(p, stop, *out);
+      const auto d = chars::parse_double(p, stop, *out);
       if (d.ec != std::errc()) return false;
       end = d.ptr;
     }

@@ -10,10 +10,12 @@
 
 #include <array>
 #include <charconv>
+
 #include <climits>
 #include <cmath>
 #include <string_view>
 
+#include "core/float_chars.hpp"
 #include "deltamesh/errors.hpp"
 #include "deltamesh/version.hpp"
 #include "core/parallel.hpp"
@@ -252,7 +254,7 @@ class OutBuffer {
   // Shortest representation that reads back to the same double.
   void put_double(double v) {
     room();
-    n_ = static_cast<std::size_t>(std::to_chars(buf_.data() + n_, buf_.data() + buf_.size(), v).ptr - buf_.data());
+    n_ = static_cast<std::size_t>(chars::shortest(buf_.data() + n_, buf_.data() + buf_.size(), v).ptr - buf_.data());
   }
   void field_int(long long v) {
     put(' ');

@@ -9,6 +9,7 @@
 #include <utility>
 
 #include "deltamesh/errors.hpp"
+#include "core/float_chars.hpp"
 #include "mesh/trace_hooks.hpp"
 
 namespace deltamesh {
@@ -176,8 +177,7 @@ namespace {
 
 void put_double(std::string& s, double x) {
   char buf[32];
-  const auto r = std::to_chars(buf, buf + sizeof buf, x);  // shortest round-trip form
-  s.append(buf, r.ptr);
+  s.append(buf, chars::shortest(buf, buf + sizeof buf, x).ptr);  // shortest round-trip form
 }
 void put_id(std::string& s, VertexId v) {
   if (v >= kInfinite) {

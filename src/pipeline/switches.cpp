@@ -8,10 +8,13 @@
 #include <cctype>
 #include <cstdlib>
 #include <charconv>
+
 #include <cmath>
 #include <iterator>
 #include <string_view>
 #include <vector>
+
+#include "core/float_chars.hpp"
 
 namespace deltamesh {
 
@@ -152,7 +155,7 @@ class SwitchString {
   }
   static double to_double(char c, std::string_view num) {
     double v = 0;
-    const auto r = std::from_chars(num.data(), num.data() + num.size(), v);
+    const auto r = chars::parse_double(num.data(), num.data() + num.size(), v);
     if (r.ec != std::errc() || r.ptr != num.data() + num.size() || !std::isfinite(v))
       throw UsageError{std::string("-") + c + std::string(num) + ": '" + std::string(num) + "' is not a number"};
     return v;
