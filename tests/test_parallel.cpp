@@ -186,7 +186,9 @@ TEST(ParallelRefine, SameBoundsAsSequential) {
   const bool quick = dm::test::quick_tests();
   std::vector<RefineCase> cases;
   cases.push_back({"square-hole q30", dm::gen::square_with_hole(64), 30, quick ? 2e-4 : 5e-5});
-  cases.push_back({"smooth q33", dm::gen::smooth_polygon(2000), 33, quick ? 4e-4 : 1e-4});
+  // Not smaller in quick (sanitizer) runs: at 4e-4 (13k triangles) the fine
+  // boundary makes the count differ by 4%.
+  cases.push_back({"smooth q33", dm::gen::smooth_polygon(2000), 33, 1e-4});
   for (const RefineCase& c : cases) {
     dm::RefineOptions o;
     o.min_angle_deg = c.angle;
