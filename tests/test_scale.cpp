@@ -19,6 +19,7 @@
 
 #include "deltamesh/deltamesh.hpp"
 #include "scale_inputs.hpp"
+#include "mesh/editor.hpp"
 
 using namespace deltamesh;
 namespace fs = std::filesystem;
@@ -36,7 +37,7 @@ void expect_valid(const Mesh& m) {
 // predicates take: check it scaled back to 1 by the same power of two.
 void expect_valid_scaled(const Mesh& m, int k) {
   Mesh copy = m;
-  for (Point& p : copy.points_mut()) p = {std::ldexp(p.x, -k), std::ldexp(p.y, -k)};
+  for (Point& p : deltamesh::detail::MeshEditor(copy).points()) p = {std::ldexp(p.x, -k), std::ldexp(p.y, -k)};
   expect_valid(copy);
 }
 
@@ -122,7 +123,9 @@ TEST(Scale, PowersOfTenGiveNearlyTheSameMesh) {
       EXPECT_NEAR(double(r.mesh.num_triangles()), n0, 0.05 * n0);
       EXPECT_TRUE(r.complete()) << r.stats.refine.summary();
       EXPECT_GE(r.stats.refine.reached_angle_deg, 30.0);
-      if (a0 >= 30.0 && r.stats.refine.below_small_input_angle == 0) EXPECT_GE(min_angle(r.mesh), 30.0);
+      if (a0 >= 30.0 && r.stats.refine.below_small_input_angle == 0) {
+        EXPECT_GE(min_angle(r.mesh), 30.0);
+      }
     }
   }
 }

@@ -8,6 +8,7 @@
 
 #include "deltamesh/deltamesh.hpp"
 #include "scale_inputs.hpp"
+#include "mesh/editor.hpp"
 
 using namespace deltamesh;
 
@@ -43,7 +44,7 @@ TEST(ScaleLong, PowersOfTwoOnTheCorpus) {
       }
       for (TriId t = 0; t < base.mesh.num_triangle_slots(); ++t) ASSERT_EQ(r.mesh.triangle(t), base.mesh.triangle(t));
       Mesh back = r.mesh;
-      for (Point& p : back.points_mut()) p = {std::ldexp(p.x, -k), std::ldexp(p.y, -k)};
+      for (Point& p : deltamesh::detail::MeshEditor(back).points()) p = {std::ldexp(p.x, -k), std::ldexp(p.y, -k)};
       CheckOptions co;
       co.convex_hull = false;
       EXPECT_TRUE(check(back, co).ok());

@@ -196,9 +196,15 @@ TEST(TraceReplay, EveryCdtMethod) {
     EXPECT_GT(r.counts.at("insert").at("crossing"), 0);
     EXPECT_GT(r.counts.at("recover").size(), 0u);
     const std::string m = method;
-    if (m == "ct") EXPECT_GT(r.counts.at("flip").at("recovery"), 0);
-    if (m == "lifting") EXPECT_GT(r.counts.at("flip").at("lifting"), 0);
-    if (m == "fast") EXPECT_GT(r.counts.at("retriangulate").at("fast"), 0);
+    if (m == "ct") {
+      EXPECT_GT(r.counts.at("flip").at("recovery"), 0);
+    }
+    if (m == "lifting") {
+      EXPECT_GT(r.counts.at("flip").at("lifting"), 0);
+    }
+    if (m == "fast") {
+      EXPECT_GT(r.counts.at("retriangulate").at("fast"), 0);
+    }
     if (m == "ct" || m == "lifting") {
       // `flips` of the recover events counts exactly the method's flip events.
       const auto& flips = r.counts.at("flip");

@@ -9,6 +9,7 @@
 
 #include "deltamesh/errors.hpp"
 #include "deltamesh/predicates.hpp"
+#include "mesh/editor.hpp"
 
 namespace deltamesh::detail {
 
@@ -113,7 +114,7 @@ void scale_seeds(const Frame& f, std::vector<Point>& points) {
 
 void restore(const Frame& f, Mesh& mesh) {
   if (f.identity()) return;
-  for (Point& p : mesh.points_mut()) p = {std::ldexp(p.x, -f.k), std::ldexp(p.y, -f.k)};
+  for (Point& p : detail::MeshEditor(mesh).points()) p = {std::ldexp(p.x, -f.k), std::ldexp(p.y, -f.k)};
   if (mesh.has_triangle_area_bounds())
     for (TriId t = 0; t < mesh.num_triangle_slots(); ++t) {
       const double a = mesh.triangle_area_bound(t);

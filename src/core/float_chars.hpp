@@ -38,6 +38,12 @@ inline std::to_chars_result general(char* first, char* last, double value, int p
 
 }  // namespace native
 #else
+// A too-small buffer is reported as to_chars does (value_too_large), so
+// gcc's truncation warning about snprintf into small buffers is moot here.
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wformat-truncation"
+#endif
 inline namespace portable {
 
 #ifdef __EMSCRIPTEN__
@@ -136,6 +142,9 @@ inline std::to_chars_result general(char* first, char* last, double value, int p
 }
 
 }  // namespace portable
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic pop
+#endif
 #endif
 
 }  // namespace deltamesh::chars
