@@ -1,6 +1,7 @@
 // numpy <-> library: the arrays of Triangle's dict layout read into the
 // pipeline's input (every array checked, errors naming it), and meshes,
 // statistics and PSLGs written back as dicts of arrays.
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <limits>
@@ -147,8 +148,16 @@ bool given(py::handle h) { return h && !h.is_none(); }
 
 // All points on one line (exact orient2d): Triangle's package returns the
 // vertices and no triangles, where the library refuses the input.
-bool all_collinear(const std::vector<Point>& p) {
-  if (p.size() < 3) return false;  // too few points: the library's error, as Triangle's
+bool all_collinear(const std::vector<Point>& given) {
+  if (given.size() < 3) return false;  // too few points: the library's error, as Triangle's
+  // At a power-of-two scale near 1 (exact), so that the predicate's products
+  // neither underflow nor overflow whatever the input's scale.
+  double big = 0;
+  for (const Point& q : given) big = std::max({big, std::fabs(q.x), std::fabs(q.y)});
+  if (!(big > 0) || !std::isfinite(big)) return false;  // the library says why
+  const int k = -std::ilogb(big);
+  std::vector<Point> p(given.size());
+  for (std::size_t i = 0; i < p.size(); ++i) p[i] = {std::ldexp(given[i].x, k), std::ldexp(given[i].y, k)};
   std::size_t b = 1;
   while (b < p.size() && p[b].x == p[0].x && p[b].y == p[0].y) ++b;
   if (b == p.size()) return true;

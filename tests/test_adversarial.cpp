@@ -152,9 +152,9 @@ TEST_F(Adversarial, CoordinatesTooFarApartInMagnitudeAreAnInputError) {
   // Any finite magnitude is meshed (run() scales by a power of two), but a
   // nonzero coordinate about 2^400 below the largest is beyond the exact
   // predicates beside it. The message names the small point and the ratio.
-  expect_input_error("huge.node", "3 2 0 0\n0 0 0\n1 1e121 0\n2 0 1\n", 0,
-                     "coordinate y of point 2 (1) is nonzero but too small beside the largest");
-  expect_input_error("huge2.node", "3 2 0 0\n0 0 0\n1 0 1\n2 0 -1e300\n", 0, "ratio of about 2^400");
+  expect_input_error("huge.node", "3 2 0 0\n0 0 0\n1 1e121 0\n2 0 1\n", 4,
+                     "huge.node:4: vertex 2: coordinate y (1) is nonzero but too small beside the largest");
+  expect_input_error("huge2.node", "3 2 0 0\n0 0 0\n1 0 1\n2 0 -1e300\n", 3, "ratio of about 2^400");
   write("far.node", "3 2 0 0\n0 0 0\n1 1e300 0\n2 0 1e300\n");
   EXPECT_EQ(run("-QC far.node").code, kExitOk);
 }
@@ -170,9 +170,9 @@ TEST_F(Adversarial, CoordinatesAtTheLimitsOfTheRangeMesh) {
 }
 
 TEST_F(Adversarial, SubnormalCoordinateIsAnInputError) {
-  expect_input_error("denormal.node", "3 2 0 0\n0 0 0\n1 1 4.9406564584124654e-324\n2 0 1\n", 0,
-                     "coordinate y of point 1 (4.9406564584124654e-324) is nonzero but too small");
-  expect_input_error("denormal2.node", "3 2 0 0\n0 0 0\n1 1e-310 0\n2 0 1\n", 0, "ratio of about 2^400");
+  expect_input_error("denormal.node", "3 2 0 0\n0 0 0\n1 1 4.9406564584124654e-324\n2 0 1\n", 3,
+                     "denormal.node:3: vertex 1: coordinate y (4.9406564584124654e-324) is nonzero but too small");
+  expect_input_error("denormal2.node", "3 2 0 0\n0 0 0\n1 1e-310 0\n2 0 1\n", 3, "ratio of about 2^400");
   // Subnormal coordinates alone are a shape at a tiny scale: meshed.
   write("subnormal.node", "3 2 0 0\n0 0 0\n1 1e-310 0\n2 0 1e-310\n");
   EXPECT_EQ(run("-QC subnormal.node").code, kExitOk);

@@ -117,6 +117,8 @@ class TraceObserver {
   friend struct detail::TraceAccess;
   std::vector<VertexId> slots_;  // 3 per triangle slot, as last reported
   std::vector<TraceTriangle> removed_, added_;
+  std::vector<Point> points_;  // an event's points in the user's frame
+  int frame_exponent_ = 0;     // the run's coordinates are the user's times 2^this
   std::size_t events_ = 0;
 };
 

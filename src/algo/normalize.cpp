@@ -84,17 +84,20 @@ Frame frame_for(std::span<const Point> points) {
 }
 
 void scale_vertices(const Frame& f, std::vector<Point>& points) {
+  const double big = largest(points);  // before the loop scales points in place
   for (std::size_t i = 0; i < points.size(); ++i) {
     Point& p = points[i];
     const Point q{std::ldexp(p.x, f.k), std::ldexp(p.y, f.k)};
     for (int c = 0; c < 2; ++c) {
       const double v = c ? p.y : p.x, s = c ? q.y : q.x;
-      if (v != 0 && std::fabs(s) < kMinCoordinate)
-        throw InputError(std::string("coordinate ") + (c ? "y" : "x") + " of point " + std::to_string(i) + " (" +
-                             show(v) + ") is nonzero but too small beside the largest coordinate magnitude (" + show(largest(points)) +
-                             "): the exact predicates resolve nonzero coordinates within a ratio of about 2^400 "
-                             "(1e120) of the largest",
-                         i);
+      if (v != 0 && std::fabs(s) < kMinCoordinate) {
+        const std::string problem = std::string("coordinate ") + (c ? "y" : "x") + " (" + show(v) +
+                                    ") is nonzero but too small beside the largest coordinate magnitude (" +
+                                    show(big) +
+                                    "): the exact predicates resolve nonzero coordinates within a ratio of about "
+                                    "2^400 (1e120) of the largest";
+        throw VertexError("point " + std::to_string(i) + ": " + problem, i, problem);
+      }
     }
     p = q;
   }
@@ -113,7 +116,6 @@ void scale_seeds(const Frame& f, std::vector<Point>& points) {
 }
 
 void restore(const Frame& f, Mesh& mesh) {
-  if (f.identity()) return;
   for (Point& p : detail::MeshEditor(mesh).points()) p = {std::ldexp(p.x, -f.k), std::ldexp(p.y, -f.k)};
   if (mesh.has_triangle_area_bounds())
     for (TriId t = 0; t < mesh.num_triangle_slots(); ++t) {
@@ -123,7 +125,6 @@ void restore(const Frame& f, Mesh& mesh) {
 }
 
 void restore(const Frame& f, RefineStats& st) {
-  if (f.identity()) return;
   const int k = -f.k;
   st.stall_x = std::ldexp(st.stall_x, k);
   st.stall_y = std::ldexp(st.stall_y, k);

@@ -3,6 +3,7 @@
 #include "deltamesh/trace.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <charconv>
 #include <iterator>
 #include <string>
@@ -115,7 +116,20 @@ void TraceAccess::slots(TraceObserver& o, TraceEvent ev, const VertexId* tv, std
 
 void TraceAccess::plain(TraceObserver& o, const TraceEvent& ev) {
   ++o.events_;
-  o.on_event(ev);
+  if (o.frame_exponent_ == 0) {
+    o.on_event(ev);
+    return;
+  }
+  // The run meshes in a power-of-two frame (algo/normalize.hpp): the
+  // observer sees the user's coordinates, mapped back exactly.
+  const auto back = [&](const Point& p) { return Point{std::ldexp(p.x, -o.frame_exponent_), std::ldexp(p.y, -o.frame_exponent_)}; };
+  TraceEvent user = ev;
+  user.point = back(ev.point);
+  user.at = back(ev.at);
+  o.points_.clear();
+  for (const Point& p : ev.points) o.points_.push_back(back(p));
+  user.points = o.points_;
+  o.on_event(user);
 }
 
 void TraceAccess::flip(TraceObserver& o, TraceReason why, const VertexId* tv, const FlipQuad& q) {

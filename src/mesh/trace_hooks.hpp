@@ -21,6 +21,8 @@ struct TraceAccess {
   static void slots(TraceObserver& o, const TraceEvent& ev, const VertexId* tv, std::initializer_list<TriId> s) {
     slots(o, ev, tv, std::span<const TriId>(s.begin(), s.size()));
   }
+  // The algorithms' coordinates are the user's times 2^k (pipeline's frame).
+  static void set_frame(TraceObserver& o, int k) { o.frame_exponent_ = k; }
   // An event that changes no triangle.
   static void plain(TraceObserver& o, const TraceEvent& ev);
   // After a flip by flip_arrays of quad q (e's slot holds (c, a, d), f's (d, b, c)).

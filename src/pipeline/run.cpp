@@ -3,6 +3,7 @@
 // constrained Delaunay triangulation and refined or adapted; then smoothing,
 // -j, -C and -o2, in the command line's order.
 #include <algorithm>
+#include <cmath>
 #include <chrono>
 #include <utility>
 
@@ -287,10 +288,41 @@ void normalize_input(const detail::Frame& f, Plan& plan, RunInput& in) {
   for (double& a : in.triangle_area_bounds) a = f.area_to(a);
   for (double& h : in.vertex_sizes) h = f.length_to(h);
   in.size = f.length_field_to(std::move(in.size));
+  // A metric measures lengths: in a frame 2^k larger, its entries are 2^-2k
+  // times the user's (exact but for overflow, like the sizes).
+  const auto metric_to = [k = f.k](Metric m) {
+    return Metric{std::ldexp(m.m11, -2 * k), std::ldexp(m.m12, -2 * k), std::ldexp(m.m22, -2 * k)};
+  };
+  for (Metric& m : in.vertex_metrics) m = metric_to(m);
+  if (in.metric && !f.identity())
+    in.metric = [user = std::move(in.metric), metric_to, k = f.k](double x, double y) {
+      return metric_to(user(std::ldexp(x, -k), std::ldexp(y, -k)));
+    };
   RefinementPlan& r = plan.refine;
   if (r.max_area) r.max_area = f.area_to(*r.max_area);
   r.max_area_at = f.area_field_to(std::move(r.max_area_at));
   r.max_edge_at = f.length_field_to(std::move(r.max_edge_at));
+}
+
+// The hole and region points as the user gave them, for messages.
+Pslg seeds_of(const Pslg& pslg) {
+  Pslg seeds;
+  seeds.holes = pslg.holes;
+  seeds.regions = pslg.regions;
+  seeds.first_index = pslg.first_index;
+  return seeds;
+}
+
+// The domain's warnings name ignored hole and region points by their
+// coordinates: those of the user's input, not of the frame.
+void rename_seed_warnings(const Pslg& user, const Pslg& framed, bool existing_mesh, RunResult& res) {
+  const DomainStats& d = res.stats.domain;
+  if (!d.holes_ignored && !d.regions_ignored) return;
+  const std::vector<std::string> from = domain_warnings(d, 1, existing_mesh, &framed);
+  const std::vector<std::string> to = domain_warnings(d, 1, existing_mesh, &user);
+  for (std::string& w : res.stats.warnings)
+    for (std::size_t i = 0; i < from.size() && i < to.size(); ++i)
+      if (w == from[i]) w = to[i];
 }
 
 void restore_result(const detail::Frame& f, RunResult& res) {
@@ -309,7 +341,10 @@ RunResult run(const Plan& user_plan, RunInput input) {
   // measure are safe, whatever the input's scale (docs/robustness.md).
   const detail::Frame frame = detail::frame_for(input.pslg.points);
   Plan plan = user_plan;
+  const Pslg user_seeds = seeds_of(input.pslg);
   normalize_input(frame, plan, input);
+  const Pslg framed_seeds = seeds_of(input.pslg);
+  if (plan.trace) detail::TraceAccess::set_frame(*plan.trace, frame.k);
   RunResult res;
   Phases phases{res.phases};
   const std::vector<std::string> unused = unused_settings(plan);
@@ -331,11 +366,13 @@ RunResult run(const Plan& user_plan, RunInput input) {
     end.edge[0] = static_cast<VertexId>(res.mesh.num_triangles());
     detail::TraceAccess::plain(*plan.trace, end);
     res.mesh.set_trace(nullptr);  // the observer may not outlive the run
+    detail::TraceAccess::set_frame(*plan.trace, 0);
   }
   if (plan.check) check_result(plan, res, phases);
   // After -j and -C, which see the linear mesh.
   if (plan.order == 2) res.midside = add_midpoint_nodes(res.mesh);
   restore_result(frame, res);
+  rename_seed_warnings(user_seeds, framed_seeds, plan.mesh_input(), res);
   res.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
   return res;
 }
