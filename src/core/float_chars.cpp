@@ -19,12 +19,14 @@ EM_JS(int, deltamesh_js_shortest, (double value, char* out, int capacity), {
   return s.length;
 });
 
-namespace deltamesh::chars::portable {
+namespace deltamesh::chars {
+inline namespace portable {
 
 // Real functions, so that the linker takes this object (and the JavaScript
 // above) from the static library.
 double js_parse(const char* text, int length) { return deltamesh_js_parse(text, length); }
 int js_shortest(double value, char* out, int capacity) { return deltamesh_js_shortest(value, out, capacity); }
 
-}  // namespace deltamesh::chars::portable
+}  // namespace portable
+}  // namespace deltamesh::chars
 #endif

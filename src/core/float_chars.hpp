@@ -35,6 +35,10 @@ inline std::to_chars_result fixed(char* first, char* last, double value, int dec
 inline std::to_chars_result general(char* first, char* last, double value, int precision) {
   return std::to_chars(first, last, value, std::chars_format::general, precision);
 }
+// The shortest fixed-point form (no exponent) that reads back as the same double.
+inline std::to_chars_result shortest_fixed(char* first, char* last, double value) {
+  return std::to_chars(first, last, value, std::chars_format::fixed);
+}
 
 }  // namespace native
 #else
@@ -139,6 +143,16 @@ inline std::to_chars_result fixed(char* first, char* last, double value, int dec
 }
 inline std::to_chars_result general(char* first, char* last, double value, int precision) {
   return put(first, last, "%.*g", precision, value);
+}
+// The fewest decimals that read back (for messages: a loop is fine).
+inline std::to_chars_result shortest_fixed(char* first, char* last, double value) {
+  char buf[400];
+  for (int decimals = 0; decimals < 340; ++decimals) {
+    const int n = std::snprintf(buf, sizeof buf, "%.*f", decimals, value);
+    if (n > 0 && n < static_cast<int>(sizeof buf) && std::strtod(buf, nullptr) == value)
+      return put(first, last, "%.*f", decimals, value);
+  }
+  return put(first, last, "%.*f", 339, value);
 }
 
 }  // namespace portable

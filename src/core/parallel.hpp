@@ -1,5 +1,5 @@
 // Threads for coarse-grained work: a handful of large tasks (one per part of
-// a decomposition), so plain std::jthread and an atomic task counter are
+// a decomposition), so plain threads and an atomic task counter are
 // enough; a work-stealing scheduler (TBB) would add a dependency for nothing
 // at this grain (docs/scaling.md).
 #pragma once
@@ -14,6 +14,10 @@ namespace deltamesh::detail {
 
 // The thread count an option asks for: 0 means every hardware thread.
 inline unsigned resolve_threads(unsigned requested) {
+#if defined(__EMSCRIPTEN__) && !defined(__EMSCRIPTEN_PTHREADS__)
+  (void)requested;
+  return 1;  // the WebAssembly build has no threads
+#endif
   if (requested != 0) return requested;
   return std::max(1u, std::thread::hardware_concurrency());
 }
@@ -37,7 +41,16 @@ void run_tasks(std::size_t count, unsigned threads, Task&& task) {
   };
   {
     const std::size_t helpers = std::min<std::size_t>(std::max(1u, threads), count) - (count > 0 ? 1 : 0);
-    std::vector<std::jthread> pool;
+    std::vector<std::thread> pool;
+    // Joins on every exit, as std::jthread would (the WebAssembly build's
+    // libc++ has no jthread).
+    struct Join {
+      std::vector<std::thread>& pool;
+      ~Join() {
+        for (std::thread& t : pool)
+          if (t.joinable()) t.join();
+      }
+    } join{pool};
     pool.reserve(helpers);
     for (std::size_t k = 0; k < helpers; ++k) pool.emplace_back(worker);
     worker();

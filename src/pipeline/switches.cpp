@@ -141,7 +141,7 @@ class SwitchString {
     const double v = std::strtod(written.c_str(), &stop);
     if (stop && *stop == '\0' && std::isfinite(v)) {
       char buf[400];  // the shortest fixed-point form that reads back as v
-      const auto r = std::to_chars(buf, buf + sizeof buf, v, std::chars_format::fixed);
+      const auto r = chars::shortest_fixed(buf, buf + sizeof buf, v);
       if (r.ec == std::errc()) plain.assign(buf, r.ptr);
     }
     throw UsageError{std::string("-") + c + written + " in '-" + std::string(s_) +
