@@ -17,23 +17,14 @@
 #include <vector>
 
 #include "deltamesh/triangle_io.hpp"
+#include "support/cli_fixture.hpp"
 
 namespace fs = std::filesystem;
 
 namespace {
 
-struct Result {
-  int code = -1;
-  std::string out;
-  std::string err;
-};
-
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
+using deltamesh::test_support::slurp;
+using Result = deltamesh::test_support::CliResult;
 
 // Data lines of a Triangle file (comments and blank lines dropped), split
 // into tokens.
@@ -51,43 +42,17 @@ std::vector<std::vector<std::string>> table(const fs::path& p) {
   return rows;
 }
 
-class Cli : public ::testing::Test {
+class Cli : public deltamesh::test_support::CliDirTest {
  protected:
-  void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::temp_directory_path() / ("deltamesh_cli_" + std::to_string(::getpid()) + "_" + info->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override {
-    if (!HasFailure()) fs::remove_all(dir_);
-  }
+  Cli() : CliDirTest("deltamesh_cli") {}
 
   // Copies tests/data/cli/NAME into the temporary directory.
   void data(const std::string& name, const std::string& as = {}) const {
     fs::copy_file(fs::path(DELTAMESH_SOURCE_DIR) / "tests/data/cli" / name, dir_ / (as.empty() ? name : as),
                   fs::copy_options::overwrite_existing);
   }
-  void write(const std::string& name, const std::string& text) const {
-    std::ofstream(dir_ / name, std::ios::binary) << text;
-  }
-  bool exists(const std::string& name) const { return fs::exists(dir_ / name); }
-  fs::path path(const std::string& name) const { return dir_ / name; }
-
   // Runs the CLI in the temporary directory with the given arguments.
-  Result run(const std::string& args) const {
-    const fs::path out = dir_ / ".stdout", err = dir_ / ".stderr";
-    const std::string cmd = "cd '" + dir_.string() + "' && '" + std::string(DELTAMESH_CLI) + "' " + args + " > '" +
-                            out.string() + "' 2> '" + err.string() + "'";
-    const int status = std::system(cmd.c_str());
-    Result r;
-    r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    r.out = slurp(out);
-    r.err = slurp(err);
-    fs::remove(out);
-    fs::remove(err);
-    return r;
-  }
+  Result run(const std::string& args) const { return run_program(DELTAMESH_CLI, args); }
 
   // Names in the directory, sorted.
   std::vector<std::string> listing() const {
@@ -96,8 +61,6 @@ class Cli : public ::testing::Test {
     std::sort(names.begin(), names.end());
     return names;
   }
-
-  fs::path dir_;
 };
 
 #define EXPECT_CONTAINS(haystack, needle) \

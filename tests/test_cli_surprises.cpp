@@ -22,23 +22,14 @@
 #include "deltamesh/triangle_io.hpp"
 #include "deltamesh/triangulate.hpp"
 #include "deltamesh/validate.hpp"
+#include "support/cli_fixture.hpp"
 
 namespace fs = std::filesystem;
 
 namespace {
 
-struct Result {
-  int code = -1;
-  std::string out;
-  std::string err;
-};
-
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
+using deltamesh::test_support::slurp;
+using Result = deltamesh::test_support::CliResult;
 
 std::size_t occurrences(const std::string& text, const std::string& needle) {
   std::size_t n = 0;
@@ -46,39 +37,15 @@ std::size_t occurrences(const std::string& text, const std::string& needle) {
   return n;
 }
 
-class Surprises : public ::testing::Test {
+class Surprises : public deltamesh::test_support::CliDirTest {
  protected:
-  void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::temp_directory_path() / ("deltamesh_surprises_" + std::to_string(::getpid()) + "_" + info->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override {
-    if (!HasFailure()) fs::remove_all(dir_);
-  }
+  Surprises() : CliDirTest("deltamesh_surprises") {}
+
   void example(const std::string& name) const {
     fs::copy_file(fs::path(DELTAMESH_SOURCE_DIR) / "examples" / name, dir_ / name,
                   fs::copy_options::overwrite_existing);
   }
-  void write(const std::string& name, const std::string& text) const {
-    std::ofstream(dir_ / name, std::ios::binary) << text;
-  }
-  fs::path path(const std::string& name) const { return dir_ / name; }
-
-  Result run(const std::string& args) const {
-    const fs::path out = dir_ / ".stdout", err = dir_ / ".stderr";
-    const std::string cmd = "cd '" + dir_.string() + "' && '" + std::string(DELTAMESH_CLI) + "' " + args + " > '" +
-                            out.string() + "' 2> '" + err.string() + "'";
-    const int status = std::system(cmd.c_str());
-    Result r;
-    r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    r.out = slurp(out);
-    r.err = slurp(err);
-    fs::remove(out);
-    fs::remove(err);
-    return r;
-  }
+  Result run(const std::string& args) const { return run_program(DELTAMESH_CLI, args); }
 
   // BASE.node + BASE.ele read back and validated; returns the mesh.
   deltamesh::Mesh read_back(const std::string& base) const {
@@ -89,8 +56,6 @@ class Surprises : public ::testing::Test {
     EXPECT_TRUE(rep.ok()) << base << ": " << rep.summary();
     return m;
   }
-
-  fs::path dir_;
 };
 
 #define EXPECT_CONTAINS(haystack, needle) \

@@ -16,10 +16,12 @@
 
 #include "deltamesh/errors.hpp"
 #include "deltamesh/mesh.hpp"
+#include "support/grid_mesh.hpp"
 #include "deltamesh/svg.hpp"
 
 using namespace deltamesh;
 namespace fs = std::filesystem;
+using deltamesh::test_support::grid_mesh;
 
 namespace {
 
@@ -42,33 +44,6 @@ class Svg : public ::testing::Test {
   }
   fs::path dir_;
 };
-
-// nx x ny squares of side h, each split into two triangles, twins linked.
-Mesh grid_mesh(int nx, int ny, double h = 1.0) {
-  Mesh m;
-  for (int j = 0; j <= ny; ++j)
-    for (int i = 0; i <= nx; ++i) m.add_vertex({i * h, j * h});
-  std::map<std::pair<VertexId, VertexId>, HalfEdgeId> half;
-  const auto add = [&](VertexId a, VertexId b, VertexId c) {
-    const TriId t = m.add_triangle(a, b, c);
-    const VertexId v[3] = {a, b, c};
-    for (int k = 0; k < 3; ++k) {
-      const HalfEdgeId e = 3 * t + k;
-      const auto it = half.find({v[(k + 1) % 3], v[k]});
-      if (it != half.end()) m.link(e, it->second);
-      half[{v[k], v[(k + 1) % 3]}] = e;
-      m.set_out_edge(v[k], e);
-    }
-  };
-  const auto id = [&](int i, int j) { return static_cast<VertexId>(j * (nx + 1) + i); };
-  for (int j = 0; j < ny; ++j)
-    for (int i = 0; i < nx; ++i) {
-      add(id(i, j), id(i + 1, j), id(i + 1, j + 1));
-      add(id(i, j), id(i + 1, j + 1), id(i, j + 1));
-    }
-  m.compact();
-  return m;
-}
 
 // A small well-formedness checker: one root element, balanced and properly
 // nested tags, quoted attributes, entities only where '&' appears. Returns

@@ -21,6 +21,7 @@
 
 #include "deltamesh/errors.hpp"
 #include "deltamesh/mesh.hpp"
+#include "support/grid_mesh.hpp"
 #include "deltamesh/triangle_io.hpp"
 #include "io/atomic_file.hpp"
 #include "io/text_reader.hpp"
@@ -28,6 +29,7 @@
 
 using namespace deltamesh;
 namespace fs = std::filesystem;
+using deltamesh::test_support::grid_mesh;
 
 namespace {
 
@@ -77,34 +79,6 @@ void expect_parse_error(F&& f, const std::string& file, std::size_t line, const 
     EXPECT_NE(e.problem().find(text), std::string::npos) << "problem: " << e.problem() << "\nexpected: " << text;
     EXPECT_NE(std::string(e.what()).find(file + ":" + std::to_string(line) + ": "), std::string::npos) << e.what();
   }
-}
-
-// nx x ny unit squares, each split into two counter-clockwise triangles,
-// twins linked, compacted. Vertex (i, j) has id j*(nx+1)+i.
-Mesh grid_mesh(int nx, int ny, double h = 1.0) {
-  Mesh m;
-  for (int j = 0; j <= ny; ++j)
-    for (int i = 0; i <= nx; ++i) m.add_vertex({i * h, j * h});
-  std::map<std::pair<VertexId, VertexId>, HalfEdgeId> half;
-  const auto add = [&](VertexId a, VertexId b, VertexId c) {
-    const TriId t = m.add_triangle(a, b, c);
-    const VertexId v[3] = {a, b, c};
-    for (int k = 0; k < 3; ++k) {
-      const HalfEdgeId e = 3 * t + k;
-      const auto it = half.find({v[(k + 1) % 3], v[k]});
-      if (it != half.end()) m.link(e, it->second);
-      half[{v[k], v[(k + 1) % 3]}] = e;
-      m.set_out_edge(v[k], e);
-    }
-  };
-  const auto id = [&](int i, int j) { return static_cast<VertexId>(j * (nx + 1) + i); };
-  for (int j = 0; j < ny; ++j)
-    for (int i = 0; i < nx; ++i) {
-      add(id(i, j), id(i + 1, j), id(i + 1, j + 1));
-      add(id(i, j), id(i + 1, j + 1), id(i, j + 1));
-    }
-  m.compact();
-  return m;
 }
 
 // Marks the edge a-b (both halves) as constrained.
