@@ -263,7 +263,7 @@ std::optional<RefineStats> refine_in_parts(Mesh& mesh, const RefineOptions& opti
   // thread; the parts grade them concurrently instead. (A coarse stage at 20
   // degrees left 3-4% more triangles at q33 next to fine boundaries.)
   coarse.min_angle_deg = 0;
-  RefineStats total = refine(mesh, coarse);
+  RefineStats total = refine_scanning(mesh, coarse, threads);
   const bool cut = total.complete;  // else the coarse stage met a limit: finish sequentially
 
   if (cut) {
@@ -304,7 +304,7 @@ std::optional<RefineStats> refine_in_parts(Mesh& mesh, const RefineOptions& opti
     constrained_lawson(topo, cut_edges);
   }
   one.progress = options.progress;
-  RefineStats last = refine(mesh, one);
+  RefineStats last = refine_scanning(mesh, one, threads);
   add_counts(last, total);
   last.input_vertices = input_vertices;
   last.steiner_points = mesh.num_vertices() - input_vertices;
