@@ -16,7 +16,7 @@ inline constexpr std::size_t kMinTrianglesPerPart = 150000;
 
 // The coarse stage refines to this many times the area bound before the
 // mesh is cut into parts.
-inline constexpr double kCoarseAreaFactor = 16.0;
+inline constexpr double kCoarseAreaFactor = 32.0;
 
 // Edge flag of the cuts between parts (with kConstrained): a temporary
 // segment that refinement never splits, so both sides keep its vertices.
