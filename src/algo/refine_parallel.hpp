@@ -26,7 +26,8 @@ inline constexpr std::uint8_t kFrozenEdge = 2;
 // the decomposition keeps (a uniform area bound, no size callbacks, budget,
 // time limit or -D, bounds up to kAutomaticBudgetAngle); nullopt otherwise,
 // and the caller refines sequentially. `parts` 0: one per thread.
-//   1. coarse: refine() to kCoarseAreaFactor x the area bound;
+//   1. coarse: refine() to kCoarseAreaFactor x the area bound, with no angle
+//      bound (the parts do the grading along fine boundaries);
 //   2. cut: the triangles into `parts` vertical slabs by centroid; the edges
 //      between slabs become temporary segments;
 //   3. refine() every slab concurrently; the cuts are frozen (kFrozenEdge:
