@@ -241,6 +241,37 @@ TEST(ParallelRefine, SameMeshRunAfterRun) {
   }
 }
 
+// The last pass's scans over every triangle (Refiner::bad_slots) on several
+// threads: the same mesh and the same statistics as on one. A star polygon
+// has small input angles, so triangles stay bad and the statistics classify them.
+TEST(ParallelRefine, ScanThreadsChangeNothing) {
+  const dm::Pslg g = dm::gen::star_polygon(300, 5);
+  dm::RefineOptions o;
+  o.min_angle_deg = 33;
+  o.max_area = 2e-4;
+  o.threads = 1;
+  dm::Mesh one = carved(g);
+  const dm::RefineStats st1 = dm::detail::refine_scanning(one, o, 1);
+  ASSERT_GT(st1.below_small_input_angle, 0u);
+  for (unsigned threads : {2u, 3u}) {
+    dm::Mesh more = carved(g);
+    const dm::RefineStats st = dm::detail::refine_scanning(more, o, threads);
+    EXPECT_EQ(st.summary(), st1.summary()) << threads;
+    EXPECT_EQ(st.below_bound, st1.below_bound) << threads;
+    EXPECT_EQ(st.reached_angle_deg, st1.reached_angle_deg) << threads;
+    EXPECT_TRUE(std::equal(one.triangle_vertices().begin(), one.triangle_vertices().end(),
+                           more.triangle_vertices().begin(), more.triangle_vertices().end()))
+        << threads;
+    EXPECT_TRUE(std::equal(one.points().begin(), one.points().end(), more.points().begin(), more.points().end(),
+                           [](const dm::Point& a, const dm::Point& b) { return a.x == b.x && a.y == b.y; }));
+    dm::CheckOptions co;
+    co.convex_hull = false;
+    co.pslg = &g;
+    const dm::CheckReport r = dm::check(more, co);
+    EXPECT_TRUE(r.ok()) << r.summary();
+  }
+}
+
 TEST(ParallelRefine, OptionsItCannotKeepAreSequential) {
   dm::Mesh m = carved(dm::gen::square_with_hole(64));
   dm::RefineOptions o;

@@ -16,7 +16,7 @@ inline constexpr std::size_t kMinTrianglesPerPart = 150000;
 
 // The coarse stage refines to this many times the area bound before the
 // mesh is cut into parts.
-inline constexpr double kCoarseAreaFactor = 16.0;
+inline constexpr double kCoarseAreaFactor = 32.0;
 
 // Edge flag of the cuts between parts (with kConstrained): a temporary
 // segment that refinement never splits, so both sides keep its vertices.
@@ -26,7 +26,8 @@ inline constexpr std::uint8_t kFrozenEdge = 2;
 // the decomposition keeps (a uniform area bound, no size callbacks, budget,
 // time limit or -D, bounds up to kAutomaticBudgetAngle); nullopt otherwise,
 // and the caller refines sequentially. `parts` 0: one per thread.
-//   1. coarse: refine() to kCoarseAreaFactor x the area bound;
+//   1. coarse: refine() to kCoarseAreaFactor x the area bound, with no angle
+//      bound (the parts do the grading along fine boundaries);
 //   2. cut: the triangles into `parts` vertical slabs by centroid; the edges
 //      between slabs become temporary segments;
 //   3. refine() every slab concurrently; the cuts are frozen (kFrozenEdge:
@@ -35,6 +36,10 @@ inline constexpr std::uint8_t kFrozenEdge = 2;
 //      the constrained Delaunay triangulation, and refine() the whole once
 //      more: it finishes what the frozen cuts left (triangles near them), so
 //      the result meets the same bounds as the sequential refinement.
+// refine() on one thread, with `scan_threads` for the passes over every
+// triangle (Refiner::set_scan_threads); for the last pass of refine_in_parts.
+RefineStats refine_scanning(Mesh& mesh, const RefineOptions& options, unsigned scan_threads);
+
 std::optional<RefineStats> refine_in_parts(Mesh& mesh, const RefineOptions& options, unsigned parts = 0);
 
 }  // namespace deltamesh::detail

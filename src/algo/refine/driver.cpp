@@ -42,7 +42,9 @@ void Refiner::run() {
   setup();
   queue_encroached();
   const std::size_t nt = tv_.size() / 3;
-  for (TriId t = 0; t < nt; ++t) consider(t);
+  const std::vector<std::uint8_t> bad = bad_slots();  // consider() queues only bad ones
+  for (TriId t = 0; t < nt; ++t)
+    if (bad.empty() || bad[t]) consider(t);
   ProgressReporter progress(opt_.progress, "refine", "Steiner points");
   refine_loop(progress);
   if (beyond_ && !stopped_) go_beyond(progress);  // beyond.cpp
@@ -406,6 +408,23 @@ std::uint32_t Refiner::segment_of(VertexId a, VertexId b) const {
 namespace deltamesh {
 
 using refinement::Refiner;
+
+namespace detail {
+
+RefineStats refine_scanning(Mesh& mesh, const RefineOptions& options, unsigned scan_threads) {
+  RefineStats stats;
+  if (!mesh.compacted()) mesh.compact();
+  stats.input_vertices = mesh.num_vertices();
+  stats.min_angle_deg = options.min_angle_deg;
+  if (mesh.num_triangles() == 0) return stats;
+  Refiner r(mesh, options, stats);
+  r.set_scan_threads(scan_threads);
+  r.run();
+  if (!mesh.compacted()) mesh.compact();
+  return stats;
+}
+
+}  // namespace detail
 
 RefineStats refine(Mesh& mesh, const RefineOptions& options) {
   if (std::optional<RefineStats> in_parts = detail::refine_in_parts(mesh, options)) return *in_parts;

@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "algo/refine/refiner.hpp"
+#include "core/parallel.hpp"
 
 namespace deltamesh::refinement {
 
@@ -67,6 +68,21 @@ void Refiner::consider(TriId t) {
     queue_.push_skinny(shortest_first_ ? shortest_edge_key(ev.shortest2) : worst_quality_key(ev.sin2, sin2_bound_), q);
   else
     queue_.push_large(q);
+}
+
+std::vector<std::uint8_t> Refiner::bad_slots() const {
+  std::vector<std::uint8_t> bad;
+  if (scan_threads_ < 2 || opt_.max_area_at || opt_.max_edge_at) return bad;
+  const std::size_t nt = tv_.size() / 3, chunks = 4 * std::size_t{scan_threads_};
+  bad.resize(nt);
+  detail::run_tasks(chunks, scan_threads_, [&](std::size_t i) {
+    for (std::size_t t = nt * i / chunks; t < nt * (i + 1) / chunks; ++t) {
+      if (tv_[3 * t] >= pts_.size()) continue;  // a dead or ghost slot: never bad
+      const Eval ev = eval(static_cast<TriId>(t));
+      bad[t] = ev.skinny || ev.large;
+    }
+  });
+  return bad;
 }
 
 }  // namespace deltamesh::refinement

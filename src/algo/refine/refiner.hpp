@@ -89,6 +89,10 @@ class Refiner {
         ve_(detail::MeshEditor(mesh).out_edges()) { trace_ = mesh.trace(); }
 
   void run();
+  // Threads for the passes that evaluate every triangle (the first look and
+  // the statistics); the result is the same for any count. Only without
+  // callbacks, which would be called concurrently (refine_in_parts' last pass).
+  void set_scan_threads(unsigned threads) { scan_threads_ = threads; }
 
  private:
   // ---- driver.cpp: setup, the R1/R2 loop, decisions ----------------------
@@ -132,6 +136,8 @@ class Refiner {
     return eval(t, pts_[tv_[e]], pts_[tv_[e + 1]], pts_[tv_[e + 2]]);
   }
   void consider(TriId t);
+  // Per triangle slot, 1 when eval() finds it bad; empty on one scan thread.
+  std::vector<std::uint8_t> bad_slots() const;
   // Precision, measured where the edge is (not over the domain): an edge
   // ab of squared length len2 is too short to split when below
   // kPrecisionFloor of the largest coordinate magnitude of a and b; a point
@@ -275,6 +281,7 @@ class Refiner {
   std::vector<float> apex_cos_; // per input vertex: cosine of its smallest angle between segments (-2: none)
   std::size_t budget_ = kUnlimited;
   std::size_t n_input_ = 0;
+  unsigned scan_threads_ = 1;
 
   // Input segments (the constrained edges when refinement starts).
   std::vector<std::array<VertexId, 2>> segs_;

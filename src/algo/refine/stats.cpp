@@ -28,7 +28,9 @@ void Refiner::finish() {
   const std::size_t nt = tv_.size() / 3;
   double low_outside = 2.0;
   double precision_sin2 = 2.0;
+  const std::vector<std::uint8_t> bad = bad_slots();
   for (TriId t = 0; t < nt; ++t) {
+    if (!bad.empty() && !bad[t]) continue;
     const Eval ev = eval(t);
     if (!ev.skinny && !ev.large) continue;
     Reason why = t < why_.size() ? why_[t] : Reason::None;
