@@ -130,7 +130,11 @@ Point Refiner::grid_point(TriId t, const Eval& ev, const Point& primary) {
 // the chosen point is checked against the mesh afterwards.
 bool Refiner::gather_petal(TriId t, const Point& centre, double radius) {
   petal_.clear();
+  petal_.reserve(kMaxPetal);
   begin_cavity();  // the cavity stamp marks gathered triangles
+  const std::size_t slots = tv_.size() / 3;
+  if (in_cav_.size() < slots) in_cav_.resize(slots, 0);
+  if (petal_index_.size() < slots) petal_index_.resize(slots);
   const auto circle = [&](TriId u, PetalTri& pt) {
     const Point& A = pts_[tv_[3 * u]];
     const Point& B = pts_[tv_[3 * u + 1]];
@@ -150,11 +154,10 @@ bool Refiner::gather_petal(TriId t, const Point& centre, double radius) {
     return dx * dx + dy * dy < s * s;
   };
   const auto add = [&](TriId u, const PetalTri& pt) {
-    add_to_cavity(u);
-    if (petal_index_.size() < in_cav_.size()) petal_index_.resize(in_cav_.size());
+    in_cav_[u] = cav_stamp_;
+    cav_.push_back(u);
     petal_index_[u] = static_cast<std::uint32_t>(petal_.size());
-    petal_.push_back(pt);
-    PetalTri& q = petal_.back();
+    PetalTri& q = petal_.emplace_back(pt);
     for (int k = 0; k < 3; ++k) q.p[k] = pts_[tv_[3 * u + k]];
     for (int k = 0; k < 3; ++k) q.e2[k] = dist2(q.p[k], q.p[k == 2 ? 0 : k + 1]);
   };
