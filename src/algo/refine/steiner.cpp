@@ -262,16 +262,28 @@ Point Refiner::best_point(TriId t, const Eval& ev, const Point& primary) {
   const Point M{0.5 * (P.x + Q.x), 0.5 * (P.y + Q.y)};
   const double ymax = ((primary.x - M.x) * nx + (primary.y - M.y) * ny) / l;
   const double min2 = ev.shortest2 * 0.999;  // no new edge shorter than PQ
+  constexpr int kFails = std::numeric_limits<int>::max();
   int primary_bad = 0;
   double primary_r2 = 0;
-  if (!score(t, primary, min2, primary_bad, primary_r2)) primary_bad = std::numeric_limits<int>::max(), primary_r2 = 0;
-  if (primary_bad == 0) return primary;
-  if (sized_ && primary_bad != std::numeric_limits<int>::max())
-    for (const BoundaryEdge& b : bnd_)
-      if (b.outer != kNone && eval(tri_of(b.outer)).large) return primary;
-  // The petal lies in the disc from whose circle PQ subtends the bound.
+  // With size bounds the primary's cavity is needed (its neighbours'
+  // sizes), so it is scored on the mesh first, as in grid_point().
+  if (sized_) {
+    if (!score(t, primary, min2, primary_bad, primary_r2)) primary_bad = kFails, primary_r2 = 0;
+    if (primary_bad == 0) return primary;
+    if (primary_bad != kFails)
+      for (const BoundaryEdge& b : bnd_)
+        if (b.outer != kNone && eval(tri_of(b.outer)).large) return primary;
+  }
+  // The petal lies in the disc from whose circle PQ subtends the bound. The
+  // primary (an off-centre 2% below the disc's top, or a circumcentre lower
+  // on the same bisector) lies in it too, so without size bounds it is
+  // scored on the petal like the other candidates.
   const double half_cot = 0.5 / std::tan(bound_rad_), rad = 0.5 / std::sin(bound_rad_);
   if (!gather_petal(t, {M.x + l * half_cot * nx, M.y + l * half_cot * ny}, l * rad)) return primary;
+  if (!sized_) {
+    if (!score_local(primary, min2, kFails, 0, primary_bad, primary_r2)) primary_bad = kFails, primary_r2 = 0;
+    if (primary_bad == 0) return primary;
+  }
   int best_bad = primary_bad;
   double best_r2 = primary_r2;
   Point best = primary;
