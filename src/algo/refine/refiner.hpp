@@ -159,6 +159,7 @@ class Refiner {
   bool score(TriId t, const Point& c, double min2, int& bad, double& radius2);
   bool gather_petal(TriId t, const Point& centre, double radius);
   bool score_local(const Point& c, double min2, int best_bad, double best_r2, int& bad, double& radius2);
+  void prepare_grid();
 
   // ---- encroachment.cpp: encroachment, and where a segment is split -----------
   // Whether p encroaches upon subsegment ab: inside its diametral lens
@@ -333,6 +334,7 @@ class Refiner {
   std::array<std::int32_t, kMaxPetal> petal_stack_{};
   std::vector<std::array<double, 2>> grid_cells_;  // best_point's coarse grid (height, shift) within the petal
   double grid_rad_ = -1;                           // the bound grid_cells_ was made for
+  double grid_tan_ = 0, grid_half_cot_ = 0, grid_disc_ = 0;  // tan of the bound; the petal's disc per unit |PQ|
 
   std::size_t appended_ = 0;  // triangles appended without Mesh::add_triangle
   Clock::time_point start_;

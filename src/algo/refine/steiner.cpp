@@ -244,6 +244,40 @@ bool Refiner::score_local(const Point& c, double min2, int best_bad, double best
   return true;
 }
 
+// Whether the point at height y and shift s (units of |PQ|, from PQ's
+// midpoint) makes a triangle with PQ within the bound: the angles at P and Q,
+// then at the new vertex (sine rule). tan_a: tan of the bound.
+static bool in_petal(double tan_a, double sin2_bound, double y, double s) {
+  if (y < tan_a * (0.5 + s) || y < tan_a * (0.5 - s)) return false;
+  const double a2 = (0.5 + s) * (0.5 + s) + y * y, b2 = (0.5 - s) * (0.5 - s) + y * y;
+  return !(y * y * std::min({1.0, a2, b2}) < sin2_bound * a2 * b2);
+}
+
+// What best_point() needs of the bound, computed once per bound: the petal's
+// disc and the coarse grid of grid_point(), its cells inside the petal in the
+// order of how often each won on the corpus (ne50m_land at q30, the smooth
+// 100k-gon at q33), so that the likely winner is scored first and the others
+// stop early. The winner does not depend on the order.
+void Refiner::prepare_grid() {
+  grid_tan_ = std::tan(bound_rad_);
+  grid_half_cot_ = 0.5 / std::tan(bound_rad_);
+  grid_disc_ = 0.5 / std::sin(bound_rad_);
+  static constexpr double kHeights[] = {0.87, 1.0, 1.15, 1.3, 1.5, 1.75, 2.0};
+  static constexpr double kShifts[] = {0.0, -0.25, 0.25, -0.5, 0.5, -0.75, 0.75, -1.0, 1.0};
+  static constexpr std::uint8_t kOrder[][2] = {
+      {0, 0}, {1, 5}, {1, 6}, {1, 1}, {2, 5}, {2, 6}, {1, 0}, {1, 2}, {4, 6}, {4, 5}, {2, 1}, {2, 2}, {3, 5},
+      {2, 0}, {3, 6}, {3, 1}, {3, 3}, {3, 2}, {3, 0}, {1, 4}, {5, 1}, {3, 4}, {4, 0}, {4, 4}, {4, 2}, {5, 2},
+      {4, 1}, {1, 3}, {4, 3}, {2, 4}, {2, 3}, {5, 0}, {0, 1}, {0, 2}, {0, 3}, {0, 4}, {0, 5}, {0, 6}, {0, 7},
+      {0, 8}, {1, 7}, {1, 8}, {2, 7}, {2, 8}, {3, 7}, {3, 8}, {4, 7}, {4, 8}, {5, 3}, {5, 4}, {5, 5}, {5, 6},
+      {5, 7}, {5, 8}, {6, 0}, {6, 1}, {6, 2}, {6, 3}, {6, 4}, {6, 5}, {6, 6}, {6, 7}, {6, 8}};
+  static_assert(std::size(kOrder) == std::size(kHeights) * std::size(kShifts));
+  grid_cells_.clear();
+  for (const auto& ij : kOrder)
+    if (in_petal(grid_tan_, sin2_bound_, kHeights[ij[0]], kShifts[ij[1]]))
+      grid_cells_.push_back({kHeights[ij[0]], kShifts[ij[1]]});
+  grid_rad_ = bound_rad_;
+}
+
 // SteinerRule::Best: grid_point()'s search with every candidate scored on
 // the triangles whose circumcircle meets the petal's disc, gathered once
 // (gather_petal, score_local), instead of by a cavity grown in the mesh, and
@@ -278,7 +312,8 @@ Point Refiner::best_point(TriId t, const Eval& ev, const Point& primary) {
   // primary (an off-centre 2% below the disc's top, or a circumcentre lower
   // on the same bisector) lies in it too, so without size bounds it is
   // scored on the petal like the other candidates.
-  const double half_cot = 0.5 / std::tan(bound_rad_), rad = 0.5 / std::sin(bound_rad_);
+  if (grid_rad_ != bound_rad_) prepare_grid();
+  const double half_cot = grid_half_cot_, rad = grid_disc_;
   if (!gather_petal(t, {M.x + l * half_cot * nx, M.y + l * half_cot * ny}, l * rad)) return primary;
   if (!sized_) {
     if (!score_local(primary, min2, kFails, 0, primary_bad, primary_r2)) primary_bad = kFails, primary_r2 = 0;
@@ -288,13 +323,7 @@ Point Refiner::best_point(TriId t, const Eval& ev, const Point& primary) {
   double best_r2 = primary_r2;
   Point best = primary;
   double best_y = ymax, best_s = 0;
-  const double tan_a = std::tan(bound_rad_);
-  // Angles at P and Q, then at the new vertex (sine rule), at least the bound.
-  const auto within_petal = [&](double y, double s) {
-    if (y < tan_a * (0.5 + s) || y < tan_a * (0.5 - s)) return false;
-    const double a2 = (0.5 + s) * (0.5 + s) + y * y, b2 = (0.5 - s) * (0.5 - s) + y * y;
-    return !(y * y * std::min({1.0, a2, b2}) < sin2_bound_ * a2 * b2);
-  };
+  const auto within_petal = [&](double y, double s) { return in_petal(grid_tan_, sin2_bound_, y, s); };
   const auto try_point = [&](double y, double s) {
     const Point c{M.x + l * (s * ux + y * nx), M.y + l * (s * uy + y * ny)};
     int bad;
@@ -309,25 +338,6 @@ Point Refiner::best_point(TriId t, const Eval& ev, const Point& primary) {
     if (y >= ymax || y <= 0 || !within_petal(y, s)) return false;
     return try_point(y, s);
   };
-  // The coarse grid of grid_point(): its cells inside the petal, found once
-  // per bound, in the order of how often each won on the corpus (ne50m_land
-  // at q30, the smooth 100k-gon at q33), so that the likely winner is scored
-  // first and the others stop early. The winner does not depend on the order.
-  if (grid_rad_ != bound_rad_) {
-    static constexpr double kHeights[] = {0.87, 1.0, 1.15, 1.3, 1.5, 1.75, 2.0};
-    static constexpr double kShifts[] = {0.0, -0.25, 0.25, -0.5, 0.5, -0.75, 0.75, -1.0, 1.0};
-    static constexpr std::uint8_t kOrder[][2] = {
-        {0, 0}, {1, 5}, {1, 6}, {1, 1}, {2, 5}, {2, 6}, {1, 0}, {1, 2}, {4, 6}, {4, 5}, {2, 1}, {2, 2}, {3, 5},
-        {2, 0}, {3, 6}, {3, 1}, {3, 3}, {3, 2}, {3, 0}, {1, 4}, {5, 1}, {3, 4}, {4, 0}, {4, 4}, {4, 2}, {5, 2},
-        {4, 1}, {1, 3}, {4, 3}, {2, 4}, {2, 3}, {5, 0}, {0, 1}, {0, 2}, {0, 3}, {0, 4}, {0, 5}, {0, 6}, {0, 7},
-        {0, 8}, {1, 7}, {1, 8}, {2, 7}, {2, 8}, {3, 7}, {3, 8}, {4, 7}, {4, 8}, {5, 3}, {5, 4}, {5, 5}, {5, 6},
-        {5, 7}, {5, 8}, {6, 0}, {6, 1}, {6, 2}, {6, 3}, {6, 4}, {6, 5}, {6, 6}, {6, 7}, {6, 8}};
-    static_assert(std::size(kOrder) == std::size(kHeights) * std::size(kShifts));
-    grid_cells_.clear();
-    for (const auto& ij : kOrder)
-      if (within_petal(kHeights[ij[0]], kShifts[ij[1]])) grid_cells_.push_back({kHeights[ij[0]], kShifts[ij[1]]});
-    grid_rad_ = bound_rad_;
-  }
   for (const auto& [y, s] : grid_cells_)
     if (y < ymax) try_point(y, s);
   // The pattern search of grid_point() on a lattice of its finest steps
