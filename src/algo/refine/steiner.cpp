@@ -254,27 +254,21 @@ static bool in_petal(double tan_a, double sin2_bound, double y, double s) {
 }
 
 // What best_point() needs of the bound, computed once per bound: the petal's
-// disc and the coarse grid of grid_point(), its cells inside the petal in the
-// order of how often each won on the corpus (ne50m_land at q30, the smooth
-// 100k-gon at q33), so that the likely winner is scored first and the others
-// stop early. The winner does not depend on the order.
+// disc and the coarse grid of grid_point(), its cells inside the petal in
+// grid_point()'s order. The order matters: exact ties in the distance to the
+// nearest vertex are common (mirror-image candidates), and the first of equal
+// candidates wins. Scoring the cells most likely to win first (measured)
+// saved 3% of the instructions but changed 0.05% of the triangles.
 void Refiner::prepare_grid() {
   grid_tan_ = std::tan(bound_rad_);
   grid_half_cot_ = 0.5 / std::tan(bound_rad_);
   grid_disc_ = 0.5 / std::sin(bound_rad_);
   static constexpr double kHeights[] = {0.87, 1.0, 1.15, 1.3, 1.5, 1.75, 2.0};
   static constexpr double kShifts[] = {0.0, -0.25, 0.25, -0.5, 0.5, -0.75, 0.75, -1.0, 1.0};
-  static constexpr std::uint8_t kOrder[][2] = {
-      {0, 0}, {1, 5}, {1, 6}, {1, 1}, {2, 5}, {2, 6}, {1, 0}, {1, 2}, {4, 6}, {4, 5}, {2, 1}, {2, 2}, {3, 5},
-      {2, 0}, {3, 6}, {3, 1}, {3, 3}, {3, 2}, {3, 0}, {1, 4}, {5, 1}, {3, 4}, {4, 0}, {4, 4}, {4, 2}, {5, 2},
-      {4, 1}, {1, 3}, {4, 3}, {2, 4}, {2, 3}, {5, 0}, {0, 1}, {0, 2}, {0, 3}, {0, 4}, {0, 5}, {0, 6}, {0, 7},
-      {0, 8}, {1, 7}, {1, 8}, {2, 7}, {2, 8}, {3, 7}, {3, 8}, {4, 7}, {4, 8}, {5, 3}, {5, 4}, {5, 5}, {5, 6},
-      {5, 7}, {5, 8}, {6, 0}, {6, 1}, {6, 2}, {6, 3}, {6, 4}, {6, 5}, {6, 6}, {6, 7}, {6, 8}};
-  static_assert(std::size(kOrder) == std::size(kHeights) * std::size(kShifts));
   grid_cells_.clear();
-  for (const auto& ij : kOrder)
-    if (in_petal(grid_tan_, sin2_bound_, kHeights[ij[0]], kShifts[ij[1]]))
-      grid_cells_.push_back({kHeights[ij[0]], kShifts[ij[1]]});
+  for (const double y : kHeights)
+    for (const double s : kShifts)
+      if (in_petal(grid_tan_, sin2_bound_, y, s)) grid_cells_.push_back({y, s});
   grid_rad_ = bound_rad_;
 }
 
