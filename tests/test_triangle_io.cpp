@@ -574,6 +574,45 @@ TEST_F(TriangleIo, EdgeAndPolyWriteSegmentMarkers) {
   EXPECT_EQ(seg, expected);
 }
 
+// The writers format integers themselves (not with std::to_chars): the
+// extremes of a marker, negative ones and every digit count read back as
+// std::to_string spells them, in .poly (unchecked per-field path) and .edge.
+TEST_F(TriangleIo, IntegerFieldsAreWrittenAsToStringSpellsThem) {
+  Mesh m = grid_mesh(2, 2);  // vertex (i, j) is 3j + i
+  const auto edge = [&](VertexId a, VertexId b) {
+    const HalfEdgeId e = m.find_edge(a, b);
+    return e != kNone ? e : m.find_edge(b, a);
+  };
+  const std::map<std::pair<int, int>, int> markers{{{0, 4}, std::numeric_limits<int>::min()},
+                                                   {{4, 8}, std::numeric_limits<int>::max()},
+                                                   {{0, 1}, -42},
+                                                   {{1, 2}, 9},
+                                                   {{3, 4}, 10},
+                                                   {{4, 5}, 99},
+                                                   {{6, 7}, 100},
+                                                   {{7, 8}, -1000000007}};
+  for (const auto& [ab, marker] : markers) m.constrain_edge(edge(ab.first, ab.second), marker);
+  TriangleWriteOptions opt;
+  opt.first_index = 1;
+  for (const char* name : {"m.poly", "m.edge"}) {
+    const std::string p = path(name);
+    if (name[2] == 'p') write_poly(m, p, opt);
+    else write_edge(m, p, opt);
+    auto lines = data_lines(p);
+    if (name[2] == 'p') lines.erase(lines.begin());  // the empty vertex section's header
+    std::size_t found = 0;
+    for (std::size_t i = 1; i < lines.size() && lines[i].size() == 4; ++i) {
+      EXPECT_EQ(lines[i][0], std::to_string(i)) << name;
+      const int a = std::stoi(lines[i][1]) - 1, b = std::stoi(lines[i][2]) - 1;
+      const auto it = markers.find({std::min(a, b), std::max(a, b)});
+      if (it == markers.end()) continue;
+      EXPECT_EQ(lines[i][3], std::to_string(it->second)) << name << " " << a << "-" << b;
+      ++found;
+    }
+    EXPECT_EQ(found, markers.size()) << name;
+  }
+}
+
 TEST_F(TriangleIo, NeighFileOppositeVertices) {
   const Mesh m = grid_mesh(3, 3);
   const std::string p = path("m.neigh");

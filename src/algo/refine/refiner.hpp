@@ -165,6 +165,7 @@ class Refiner {
   bool score(TriId t, const Point& c, double min2, int& bad, double& radius2);
   bool gather_petal(TriId t, const Point& centre, double radius);
   bool score_local(const Point& c, double min2, int best_bad, double best_r2, int& bad, double& radius2);
+  void prepare_grid();
 
   // ---- encroachment.cpp: encroachment, and where a segment is split -----------
   // Whether p encroaches upon subsegment ab: inside its diametral lens
@@ -323,17 +324,24 @@ class Refiner {
   // circumcircle meets the petal, with their circles and local neighbours
   // (>= 0: index in petal_; kOut: a triangle outside; kWall: a segment or
   // the hull), so that candidates are scored without touching the mesh.
+  // Its corners and squared edge lengths (edge k: p[k] -> p[k+1]) are
+  // copied in, so that scoring reads one record per triangle.
   struct PetalTri {
-    VertexId v[3];
-    std::int32_t nb[3];
+    Point p[3];
+    double e2[3];
     double cx, cy, r2;
+    std::int32_t nb[3];
   };
   static constexpr std::int32_t kOut = -1, kWall = -2;
+  static constexpr std::size_t kMaxPetal = 96;
   std::vector<PetalTri> petal_;
   std::vector<std::uint32_t> petal_index_;  // per triangle slot in the cavity stamp: its index in petal_
-  std::vector<std::uint32_t> petal_in_;     // per petal_ entry: the candidate stamp when in its cavity
+  std::array<std::uint32_t, kMaxPetal> petal_in_{};  // per petal_ entry: the candidate stamp when in its cavity
   std::uint32_t petal_stamp_ = 0;
-  std::vector<std::int32_t> petal_stack_;
+  std::array<std::int32_t, kMaxPetal> petal_stack_{};
+  std::vector<std::array<double, 2>> grid_cells_;  // best_point's coarse grid (height, shift) within the petal
+  double grid_rad_ = -1;                           // the bound grid_cells_ was made for
+  double grid_tan_ = 0, grid_half_cot_ = 0, grid_disc_ = 0;  // tan of the bound; the petal's disc per unit |PQ|
 
   std::size_t appended_ = 0;  // triangles appended without Mesh::add_triangle
   Clock::time_point start_;

@@ -129,9 +129,12 @@ Point Refiner::grid_point(TriId t, const Eval& ev, const Point& primary) {
 // too many (then the off-centre is kept). The circles are in floating point:
 // the chosen point is checked against the mesh afterwards.
 bool Refiner::gather_petal(TriId t, const Point& centre, double radius) {
-  constexpr std::size_t kMaxPetal = 96;
   petal_.clear();
+  petal_.reserve(kMaxPetal);
   begin_cavity();  // the cavity stamp marks gathered triangles
+  const std::size_t slots = tv_.size() / 3;
+  if (in_cav_.size() < slots) in_cav_.resize(slots, 0);
+  if (petal_index_.size() < slots) petal_index_.resize(slots);
   const auto circle = [&](TriId u, PetalTri& pt) {
     const Point& A = pts_[tv_[3 * u]];
     const Point& B = pts_[tv_[3 * u + 1]];
@@ -151,12 +154,12 @@ bool Refiner::gather_petal(TriId t, const Point& centre, double radius) {
     return dx * dx + dy * dy < s * s;
   };
   const auto add = [&](TriId u, const PetalTri& pt) {
-    add_to_cavity(u);
-    if (petal_index_.size() < in_cav_.size()) petal_index_.resize(in_cav_.size());
+    in_cav_[u] = cav_stamp_;
+    cav_.push_back(u);
     petal_index_[u] = static_cast<std::uint32_t>(petal_.size());
-    petal_.push_back(pt);
-    PetalTri& q = petal_.back();
-    for (int k = 0; k < 3; ++k) q.v[k] = tv_[3 * u + k];
+    PetalTri& q = petal_.emplace_back(pt);
+    for (int k = 0; k < 3; ++k) q.p[k] = pts_[tv_[3 * u + k]];
+    for (int k = 0; k < 3; ++k) q.e2[k] = dist2(q.p[k], q.p[k == 2 ? 0 : k + 1]);
   };
   PetalTri pt{};
   circle(t, pt);
@@ -183,7 +186,6 @@ bool Refiner::gather_petal(TriId t, const Point& centre, double radius) {
       petal_[i].nb[k] = nb;
     }
   }
-  if (petal_in_.size() < petal_.size()) petal_in_.resize(kMaxPetal, 0);
   return true;
 }
 
@@ -191,40 +193,47 @@ bool Refiner::gather_petal(TriId t, const Point& centre, double radius) {
 // triangles' circles, with the same tests on its boundary edges. Only a
 // point that beats (best_bad, best_r2) matters: scoring stops (false) as
 // soon as c cannot, since `bad` only grows and `radius2` only shrinks.
+// radius2 starts at the distance to the corners of the bad triangle (the
+// first petal triangle), which are on every cavity's boundary, so that a
+// point too close to them is dropped before its cavity is grown.
 bool Refiner::score_local(const Point& c, double min2, int best_bad, double best_r2, int& bad, double& radius2) {
+  const PetalTri& t0 = petal_[0];
+  {
+    const double dx = c.x - t0.cx, dy = c.y - t0.cy;
+    if (!(dx * dx + dy * dy < t0.r2)) return false;
+  }
+  radius2 = std::min({dist2(t0.p[0], c), dist2(t0.p[1], c), dist2(t0.p[2], c)});
+  if (radius2 < min2 || (best_bad == 0 && radius2 <= best_r2)) return false;
   if (++petal_stamp_ == 0) {
-    std::fill(petal_in_.begin(), petal_in_.end(), 0);
+    petal_in_.fill(0);
     petal_stamp_ = 1;
   }
-  const auto inside = [&](const PetalTri& pt) {
-    const double dx = c.x - pt.cx, dy = c.y - pt.cy;
-    return dx * dx + dy * dy < pt.r2;
-  };
-  if (!inside(petal_[0])) return false;
+  const std::uint32_t stamp = petal_stamp_;
   bad = 0;
-  radius2 = INFINITY;
-  petal_stack_.clear();
-  petal_stack_.push_back(0);
-  petal_in_[0] = petal_stamp_;
-  while (!petal_stack_.empty()) {
-    const PetalTri& pt = petal_[petal_stack_.back()];
-    petal_stack_.pop_back();
+  std::size_t top = 0;
+  petal_stack_[top++] = 0;
+  petal_in_[0] = stamp;
+  while (top > 0) {
+    const PetalTri& pt = petal_[static_cast<std::size_t>(petal_stack_[--top])];
     for (int k = 0; k < 3; ++k) {
       const std::int32_t j = pt.nb[k];
       if (j >= 0) {
-        if (petal_in_[j] == petal_stamp_) continue;
-        if (inside(petal_[j])) {
-          petal_in_[j] = petal_stamp_;
-          petal_stack_.push_back(j);
+        const auto ju = static_cast<std::size_t>(j);
+        if (petal_in_[ju] == stamp) continue;
+        const PetalTri& q = petal_[ju];
+        const double dx = c.x - q.cx, dy = c.y - q.cy;
+        if (dx * dx + dy * dy < q.r2) {
+          petal_in_[ju] = stamp;
+          petal_stack_[top++] = j;
           continue;
         }
       }
-      const Point& A = pts_[pt.v[k]];
-      const Point& B = pts_[pt.v[k == 2 ? 0 : k + 1]];
+      const Point& A = pt.p[k];
+      const Point& B = pt.p[k == 2 ? 0 : k + 1];
       const double cross = (B.x - A.x) * (c.y - A.y) - (B.y - A.y) * (c.x - A.x);
       if (!(cross > 0)) return false;
       if (j == kWall && encroaches(A, B, c)) return false;
-      const double la = dist2(A, c), lb = dist2(B, c), lab = dist2(A, B);
+      const double la = dist2(A, c), lb = dist2(B, c), lab = pt.e2[k];
       radius2 = std::min({radius2, la, lb});
       if (radius2 < min2) return false;
       const double lo = std::min({la, lb, lab});
@@ -233,6 +242,34 @@ bool Refiner::score_local(const Point& c, double min2, int best_bad, double best
     }
   }
   return true;
+}
+
+// Whether the point at height y and shift s (units of |PQ|, from PQ's
+// midpoint) makes a triangle with PQ within the bound: the angles at P and Q,
+// then at the new vertex (sine rule). tan_a: tan of the bound.
+static bool in_petal(double tan_a, double sin2_bound, double y, double s) {
+  if (y < tan_a * (0.5 + s) || y < tan_a * (0.5 - s)) return false;
+  const double a2 = (0.5 + s) * (0.5 + s) + y * y, b2 = (0.5 - s) * (0.5 - s) + y * y;
+  return !(y * y * std::min({1.0, a2, b2}) < sin2_bound * a2 * b2);
+}
+
+// What best_point() needs of the bound, computed once per bound: the petal's
+// disc and the coarse grid of grid_point(), its cells inside the petal in
+// grid_point()'s order. The order matters: exact ties in the distance to the
+// nearest vertex are common (mirror-image candidates), and the first of equal
+// candidates wins. Scoring the cells most likely to win first (measured)
+// saved 3% of the instructions but changed 0.05% of the triangles.
+void Refiner::prepare_grid() {
+  grid_tan_ = std::tan(bound_rad_);
+  grid_half_cot_ = 0.5 / std::tan(bound_rad_);
+  grid_disc_ = 0.5 / std::sin(bound_rad_);
+  static constexpr double kHeights[] = {0.87, 1.0, 1.15, 1.3, 1.5, 1.75, 2.0};
+  static constexpr double kShifts[] = {0.0, -0.25, 0.25, -0.5, 0.5, -0.75, 0.75, -1.0, 1.0};
+  grid_cells_.clear();
+  for (const double y : kHeights)
+    for (const double s : kShifts)
+      if (in_petal(grid_tan_, sin2_bound_, y, s)) grid_cells_.push_back({y, s});
+  grid_rad_ = bound_rad_;
 }
 
 // SteinerRule::Best: grid_point()'s search with every candidate scored on
@@ -253,26 +290,35 @@ Point Refiner::best_point(TriId t, const Eval& ev, const Point& primary) {
   const Point M{0.5 * (P.x + Q.x), 0.5 * (P.y + Q.y)};
   const double ymax = ((primary.x - M.x) * nx + (primary.y - M.y) * ny) / l;
   const double min2 = ev.shortest2 * 0.999;  // no new edge shorter than PQ
+  constexpr int kFails = std::numeric_limits<int>::max();
   int primary_bad = 0;
   double primary_r2 = 0;
-  if (!score(t, primary, min2, primary_bad, primary_r2)) primary_bad = std::numeric_limits<int>::max(), primary_r2 = 0;
-  if (primary_bad == 0) return primary;
-  if (sized_ && primary_bad != std::numeric_limits<int>::max())
-    for (const BoundaryEdge& b : bnd_)
-      if (b.outer != kNone && eval(tri_of(b.outer)).large) return primary;
-  // The petal lies in the disc from whose circle PQ subtends the bound.
-  const double half_cot = 0.5 / std::tan(bound_rad_), rad = 0.5 / std::sin(bound_rad_);
+  // With size bounds the primary's cavity is needed (its neighbours'
+  // sizes), so it is scored on the mesh first, as in grid_point().
+  if (sized_) {
+    if (!score(t, primary, min2, primary_bad, primary_r2)) primary_bad = kFails, primary_r2 = 0;
+    if (primary_bad == 0) return primary;
+    if (primary_bad != kFails)
+      for (const BoundaryEdge& b : bnd_)
+        if (b.outer != kNone && eval(tri_of(b.outer)).large) return primary;
+  }
+  // The petal lies in the disc from whose circle PQ subtends the bound. The
+  // primary (an off-centre 2% below the disc's top, or a circumcentre lower
+  // on the same bisector) lies in it too, so without size bounds it is
+  // scored on the petal like the other candidates.
+  if (grid_rad_ != bound_rad_) prepare_grid();
+  const double half_cot = grid_half_cot_, rad = grid_disc_;
   if (!gather_petal(t, {M.x + l * half_cot * nx, M.y + l * half_cot * ny}, l * rad)) return primary;
+  if (!sized_) {
+    if (!score_local(primary, min2, kFails, 0, primary_bad, primary_r2)) primary_bad = kFails, primary_r2 = 0;
+    if (primary_bad == 0) return primary;
+  }
   int best_bad = primary_bad;
   double best_r2 = primary_r2;
   Point best = primary;
   double best_y = ymax, best_s = 0;
-  const double tan_a = std::tan(bound_rad_);
-  const auto consider = [&](double y, double s) {
-    if (y >= ymax || y <= 0) return false;
-    if (y < tan_a * (0.5 + s) || y < tan_a * (0.5 - s)) return false;
-    const double a2 = (0.5 + s) * (0.5 + s) + y * y, b2 = (0.5 - s) * (0.5 - s) + y * y;
-    if (y * y * std::min({1.0, a2, b2}) < sin2_bound_ * a2 * b2) return false;
+  const auto within_petal = [&](double y, double s) { return in_petal(grid_tan_, sin2_bound_, y, s); };
+  const auto try_point = [&](double y, double s) {
     const Point c{M.x + l * (s * ux + y * nx), M.y + l * (s * uy + y * ny)};
     int bad;
     double r2;
@@ -282,10 +328,12 @@ Point Refiner::best_point(TriId t, const Eval& ev, const Point& primary) {
     best_y = y, best_s = s;
     return true;
   };
-  static constexpr double kHeights[] = {0.87, 1.0, 1.15, 1.3, 1.5, 1.75, 2.0};
-  static constexpr double kShifts[] = {0.0, -0.25, 0.25, -0.5, 0.5, -0.75, 0.75, -1.0, 1.0};
-  for (const double y : kHeights)
-    for (const double s : kShifts) consider(y, s);
+  const auto consider = [&](double y, double s) {
+    if (y >= ymax || y <= 0 || !within_petal(y, s)) return false;
+    return try_point(y, s);
+  };
+  for (const auto& [y, s] : grid_cells_)
+    if (y < ymax) try_point(y, s);
   // The pattern search of grid_point() on a lattice of its finest steps
   // around the grid's winner, each lattice point scored at most once (a
   // move's neighbourhood overlaps the last one's): steps of 4, 2 and 1 units
