@@ -1,7 +1,9 @@
 // The anisotropic step of fuzz_adapt: adapt_to_metric() to a metric field
 // drawn from the bytes: a constant tensor, rotating directions, a layer
 // (aspect ratios up to 1:10^4), per-vertex tensors over the mesh (some
-// possibly not metrics), or a field that is not a metric somewhere.
+// possibly not metrics, or the metric of a tanh front through
+// recover_hessian, metric_from_hessian and gradate_metric), or a field
+// that is not a metric somewhere.
 //
 // A bug is: an exception other than InputError; an InputError when every
 // tensor given was a metric, or none when the field is never one (a
@@ -58,6 +60,51 @@ inline MetricShape metric_shape(const Mesh& m, double off = 0) {
   return s;
 }
 
+// Metrics of a tanh front across the mesh (width and direction from the
+// bytes) through the pipeline of bench_aniso: recover_hessian,
+// metric_from_hessian (to a complexity or a tolerance), gradate_metric.
+// Each must take the mesh as it is (any shape, stretched stars, vertices
+// in no triangle) and give a metric at every used vertex. False when the
+// sizes would leave the range where tensors are finite (not this test).
+inline bool hessian_metrics(FuzzedDataProvider& in, const Mesh& mesh, double lox, double loy, double diag,
+                            double angle, double aspect, std::vector<Metric>& m) {
+  const double width = diag * std::ldexp(1.0, -in.ConsumeIntegralInRange<int>(0, 12));
+  const double c = std::cos(angle), s = std::sin(angle);
+  MetricScaling sc;
+  sc.h_max = diag;
+  sc.h_min = diag * 1e-6;
+  sc.max_aspect = aspect;
+  if (!(1 / (sc.h_max * sc.h_max) > 1e-250) || !(1 / (sc.h_min * sc.h_min) < 1e250)) return false;
+  if (in.ConsumeBool())
+    sc.complexity = in.ConsumeIntegralInRange<int>(1, 2000);
+  else
+    sc.tolerance = std::ldexp(1.0, -in.ConsumeIntegralInRange<int>(1, 20));
+  sc.p = in.ConsumeIntegralInRange<int>(0, 3);
+  const double beta = 1 + in.ConsumeIntegralInRange<int>(1, 40) / 10.0;
+  std::vector<double> u(mesh.num_vertices());
+  for (VertexId v = 0; v < mesh.num_vertices(); ++v) {
+    const Point& p = mesh.point(v);
+    u[v] = std::tanh((c * (p.x - lox) + s * (p.y - loy)) / width - 0.5 * diag / width);
+  }
+  try {
+    const std::vector<Metric> h = recover_hessian(mesh, u);
+    for (const Metric& x : h)
+      DELTAMESH_FUZZ_CHECK(std::isfinite(x.m11) && std::isfinite(x.m12) && std::isfinite(x.m22),
+                           "recover_hessian gave a non-finite Hessian");
+    m = metric_from_hessian(mesh, h, sc);
+    gradate_metric(mesh, m, beta);
+  } catch (const InputError& e) {
+    fail(std::string("the Hessian metric pipeline refused a mesh: ") + e.what());
+  } catch (...) {
+    unexpected_exception("the Hessian metric pipeline");
+  }
+  for (VertexId v = 0; v < mesh.num_vertices(); ++v)
+    if (mesh.out_edge(v) != kNone)
+      DELTAMESH_FUZZ_CHECK(is_metric(m[v]), "the Hessian metric pipeline gave vertex " + std::to_string(v) +
+                                                " a tensor that is not a metric: " + metric_problem(m[v]));
+  return true;
+}
+
 // Runs one anisotropic adaptation; protect: ids below it must stay put.
 inline void metric_step(FuzzedDataProvider& in, Mesh& mesh, const Pslg* input, std::size_t protect, bool verbose) {
   if (mesh.num_triangles() == 0) return;
@@ -97,13 +144,18 @@ inline void metric_step(FuzzedDataProvider& in, Mesh& mesh, const Pslg* input, s
         break;
       case 3: {  // per-vertex tensors, some maybe not metrics
         std::vector<Metric> m(mesh.num_vertices());
-        for (Metric& t : m) {
-          const int pick = in.ConsumeIntegralInRange<int>(0, 15);
-          t = tensor(h_long * (1 + pick % 4) / 4, h_long / aspect, angle + 0.3 * pick);
-          if (pick == 15) {
-            static constexpr Metric kBad[] = {{1, 2, 1}, {-1, 0, 1}, {1, 1, 1}, {NAN, 0, 1}, {1, 0, 1e-30}};
-            t = kBad[in.ConsumeIntegralInRange<int>(0, 4)];
-            some_bad = true;
+        if (in.ConsumeBool()) {  // or from a field: recover_hessian, metric_from_hessian, gradate_metric
+          if (!hessian_metrics(in, mesh, lox, loy, diag, angle, aspect, m)) return;
+          what += " (from a recovered Hessian)";
+        } else {
+          for (Metric& t : m) {
+            const int pick = in.ConsumeIntegralInRange<int>(0, 15);
+            t = tensor(h_long * (1 + pick % 4) / 4, h_long / aspect, angle + 0.3 * pick);
+            if (pick == 15) {
+              static constexpr Metric kBad[] = {{1, 2, 1}, {-1, 0, 1}, {1, 1, 1}, {NAN, 0, 1}, {1, 0, 1e-30}};
+              t = kBad[in.ConsumeIntegralInRange<int>(0, 4)];
+              some_bad = true;
+            }
           }
         }
         try {
