@@ -11,9 +11,10 @@
 // (a tensor view as background mesh) for comparison.
 //
 //   bench_aniso [--functions front,layer,cross] [--n 250,500,...] [--methods iso,aniso] [--iterations 5]
-//               [--svg DIR] [--svg-n N] [--gmsh DIR]
+//               [--svg DIR] [--svg-n N] [--gmsh DIR] [--gradation BETA]
 //
-// --svg: pictures of the meshes at N = --svg-n (default 2000).
+// --svg: pictures of the meshes at N = --svg-n (default 2000). --gradation:
+// gradate_metric's beta for both methods (default 2).
 //
 // Output: CSV on stdout, one row per (function, method, N) after the last
 // iteration; every mesh of every iteration goes through check().
@@ -122,7 +123,7 @@ void validate(const dm::Mesh& m, const std::string& what) {
   }
 }
 
-std::vector<dm::Metric> metric_for(const dm::Mesh& m, const Function& fn, bool aniso, double n) {
+std::vector<dm::Metric> metric_for(const dm::Mesh& m, const Function& fn, bool aniso, double n, double gradation) {
   std::vector<dm::Metric> h = dm::recover_hessian(m, values(m, fn));
   if (!aniso)
     for (dm::Metric& x : h) x = isotropic_part(x);
@@ -133,7 +134,7 @@ std::vector<dm::Metric> metric_for(const dm::Mesh& m, const Function& fn, bool a
   sc.h_max = 0.25;
   sc.max_aspect = 1e4;
   std::vector<dm::Metric> met = dm::metric_from_hessian(m, h, sc);
-  dm::gradate_metric(m, met, 2.0);
+  dm::gradate_metric(m, met, gradation);
   return met;
 }
 
@@ -236,6 +237,7 @@ int main(int argc, char** argv) {
   std::string svg_dir, gmsh_dir;
   std::vector<std::string> methods = {"iso", "aniso"};
   double svg_n = 2000;
+  double gradation = 2;
   for (int i = 1; i + 1 < argc; i += 2) {
     const std::string a = argv[i], v = argv[i + 1];
     if (a == "--functions") fnames = split(v);
@@ -247,6 +249,7 @@ int main(int argc, char** argv) {
     else if (a == "--svg-n") svg_n = std::atof(v.c_str());
     else if (a == "--methods") methods = split(v);
     else if (a == "--gmsh") gmsh_dir = v;
+    else if (a == "--gradation") gradation = std::atof(v.c_str());
     else {
       std::fprintf(stderr, "bench_aniso: unknown option %s\n", a.c_str());
       return 2;
@@ -265,7 +268,7 @@ int main(int argc, char** argv) {
         std::vector<dm::Metric> met;
         dm::Mesh bg;
         for (int it = 0; it < iterations; ++it) {
-          met = metric_for(m, fn, aniso, n);
+          met = metric_for(m, fn, aniso, n, gradation);
           bg = m;
           const dm::MetricField field = dm::metric_field_from_vertices(m, met);
           const auto t0 = std::chrono::steady_clock::now();

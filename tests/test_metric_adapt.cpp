@@ -180,6 +180,44 @@ TEST(Metric, HessianRecoveryIsExactForQuadratics) {
   EXPECT_THROW(dm::recover_hessian(m, wrong), dm::InputError);
 }
 
+// The one-ring fit (most vertices) and the patch's own axes: still exact on
+// an affine image of a mesh stretched 1:10^4 along a slanted direction,
+// where a fit in isotropically scaled coordinates loses the thin direction
+// to rounding (its normal equations span 10^16 in scale).
+TEST(Metric, HessianRecoveryIsExactForQuadraticsOnStretchedMeshes) {
+  const dm::Mesh base = mesh_of(two_regions(), 0.002);
+  const double th = 0.6, c = std::cos(th), s = std::sin(th), squeeze = 1e-4;
+  // x = R diag(1, squeeze) xi.
+  dm::Pslg nodes;
+  for (dm::VertexId v = 0; v < base.num_vertices(); ++v) {
+    const dm::Point& p = base.point(v);
+    nodes.points.push_back({c * p.x - s * squeeze * p.y, s * p.x + c * squeeze * p.y});
+  }
+  std::vector<dm::VertexId> tris;
+  for (dm::TriId t = 0; t < base.num_triangle_slots(); ++t)
+    if (base.is_real(t))
+      for (dm::VertexId v : base.triangle(t)) tris.push_back(v);
+  const dm::Mesh m = dm::mesh_from_triangles(nodes, tris);
+  ASSERT_EQ(m.num_triangles(), base.num_triangles());
+  // u = 3 xi^2 + 2 xi eta - eta^2 with xi = x R e1, eta = (x R e2) / squeeze:
+  // Hessian in x = J^T [[6, 2], [2, -2]] J, J's rows R e1, R e2 / squeeze.
+  const double j11 = c, j12 = s, j21 = -s / squeeze, j22 = c / squeeze;
+  std::vector<double> u(m.num_vertices());
+  for (dm::VertexId v = 0; v < m.num_vertices(); ++v) {
+    const dm::Point& p = m.point(v);
+    const double xi = j11 * p.x + j12 * p.y, eta = j21 * p.x + j22 * p.y;
+    u[v] = 3 * xi * xi + 2 * xi * eta - eta * eta;
+  }
+  const double p11 = 6 * j11 + 2 * j21, p12 = 6 * j12 + 2 * j22, p21 = 2 * j11 - 2 * j21, p22 = 2 * j12 - 2 * j22;
+  const dm::Metric want{j11 * p11 + j21 * p21, j11 * p12 + j21 * p22, j12 * p12 + j22 * p22};
+  const std::vector<dm::Metric> h = dm::recover_hessian(m, u);
+  for (dm::VertexId v = 0; v < m.num_vertices(); ++v) {
+    if (m.out_edge(v) == dm::kNone) continue;
+    SCOPED_TRACE("vertex " + std::to_string(v));
+    expect_near_metric(h[v], want, 1e-6);
+  }
+}
+
 TEST(Metric, ScalingReachesTheComplexityAndGradationBoundsGrowth) {
   dm::Mesh m = mesh_of(two_regions(), 0.002);
   std::vector<double> u(m.num_vertices());

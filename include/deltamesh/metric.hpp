@@ -72,9 +72,11 @@ MetricField metric_field_from_vertices(const Mesh& background, std::span<const M
 
 // Recovered Hessian of a P1 field (one value per vertex; vertices in no
 // triangle get a zero Hessian): at each vertex, a least-squares fit of a
-// quadratic to the values on its two-ring (its one-ring, then more rings
-// while fewer than 9 points), in coordinates centred at the vertex and
-// scaled by the patch size. This is the patch fit of polynomial-preserving
+// quadratic to the values on its one-ring when that has at least 7 points
+// and determines a quadratic, else on the two-ring (up to four rings), in
+// coordinates centred at the vertex along the patch's principal axes, each
+// scaled by the patch's extent (stretched patches stay well conditioned).
+// This is the patch fit of polynomial-preserving
 // recovery (Zhang & Naga, "A new finite element gradient recovery method:
 // superconvergence property", SIAM J. Sci. Comput. 26(4), 2005) taken to
 // second derivatives; exact for quadratics.

@@ -15,7 +15,7 @@ namespace deltamesh {
 
 namespace {
 
-constexpr std::size_t kMinPatch = 9;  // points for a well-posed fit of 6 coefficients
+constexpr std::size_t kMinPatch = 7;  // points for a least-squares fit of 6 coefficients
 constexpr int kMaxRings = 4;
 
 // Least squares for c in sum_i (phi_i . c - u_i)^2, by the normal equations
@@ -44,6 +44,50 @@ bool solve6(std::array<std::array<double, 7>, 6>& a, std::array<double, 6>& c) {
   return true;
 }
 
+// The Hessian of the least-squares quadratic through the values on
+// `patch` (patch[0] is the centre vertex). The fit is made in the patch's
+// principal axes, each scaled by the patch's extent along it, so a patch
+// stretched as much as an anisotropic mesh's stars stays well conditioned
+// (quadratics are closed under affine maps: the same fit, better rounded).
+// False when the points do not determine a quadratic.
+bool fit_hessian(const Mesh& mesh, std::span<const double> values, const std::vector<VertexId>& patch, Metric& h) {
+  const Point& o = mesh.point(patch[0]);
+  Metric cov{0, 0, 0};
+  for (VertexId w : patch) {
+    const double dx = mesh.point(w).x - o.x, dy = mesh.point(w).y - o.y;
+    cov.m11 += dx * dx, cov.m12 += dx * dy, cov.m22 += dy * dy;
+  }
+  if (!(cov.m11 + cov.m22 > 0) || !std::isfinite(cov.m11 + cov.m22)) return false;
+  const Eigen2 e = eigen(cov);
+  // Axis 1 = (-s, c) (smaller spread), axis 2 = (c, s); extents along them.
+  double s1 = 0, s2 = 0;
+  for (VertexId w : patch) {
+    const double dx = mesh.point(w).x - o.x, dy = mesh.point(w).y - o.y;
+    s1 = std::max(s1, std::fabs(-e.s * dx + e.c * dy));
+    s2 = std::max(s2, std::fabs(e.c * dx + e.s * dy));
+  }
+  if (!(s1 > 0) || !(s2 > 0)) return false;
+  // xi = J d with J's rows axis_i / s_i.
+  const double j11 = -e.s / s1, j12 = e.c / s1, j21 = e.c / s2, j22 = e.s / s2;
+  std::array<std::array<double, 7>, 6> a{};
+  for (VertexId w : patch) {
+    const double dx = mesh.point(w).x - o.x, dy = mesh.point(w).y - o.y;
+    const double x = j11 * dx + j12 * dy, y = j21 * dx + j22 * dy;
+    const std::array<double, 6> phi{1, x, y, 0.5 * x * x, x * y, 0.5 * y * y};
+    for (int i = 0; i < 6; ++i) {
+      for (int k = 0; k < 6; ++k) a[i][k] += phi[i] * phi[k];
+      a[i][6] += phi[i] * values[w];
+    }
+  }
+  std::array<double, 6> c{};
+  if (!solve6(a, c)) return false;
+  // H = J^T Hxi J.
+  const double p11 = c[3] * j11 + c[4] * j21, p12 = c[3] * j12 + c[4] * j22;  // (Hxi J) row 1
+  const double p21 = c[4] * j11 + c[5] * j21, p22 = c[4] * j12 + c[5] * j22;  // row 2
+  h = {j11 * p11 + j21 * p21, j11 * p12 + j21 * p22, j12 * p12 + j22 * p22};
+  return std::isfinite(h.m11) && std::isfinite(h.m12) && std::isfinite(h.m22);
+}
+
 }  // namespace
 
 std::vector<Metric> recover_hessian(const Mesh& mesh, std::span<const double> values) {
@@ -63,7 +107,11 @@ std::vector<Metric> recover_hessian(const Mesh& mesh, std::span<const double> va
     patch.assign(1, v);
     seen[v] = stamp;
     ring.assign(1, v);
-    for (int r = 0; r < kMaxRings && (r < 2 || patch.size() < kMinPatch) && !ring.empty(); ++r) {
+    // The smallest patch of whole rings that determines a quadratic: the
+    // one-ring when it has enough points (most interior vertices), else
+    // more rings. The smaller the patch, the less a layer thinner than it
+    // is smoothed away.
+    for (int r = 0; r < kMaxRings && !ring.empty(); ++r) {
       next.clear();
       for (VertexId w : ring) {
         adaptation::neighbors_of(mesh, w, scratch, nbr);
@@ -75,24 +123,8 @@ std::vector<Metric> recover_hessian(const Mesh& mesh, std::span<const double> va
           }
       }
       ring.swap(next);
+      if (patch.size() >= kMinPatch && fit_hessian(mesh, values, patch, hess[v])) break;
     }
-    const Point& o = mesh.point(v);
-    double hs = 0;
-    for (VertexId w : patch) hs = std::max(hs, adaptation::dist(o, mesh.point(w)));
-    if (!(hs > 0)) continue;
-    std::array<std::array<double, 7>, 6> a{};
-    for (VertexId w : patch) {
-      const double x = (mesh.point(w).x - o.x) / hs, y = (mesh.point(w).y - o.y) / hs;
-      const std::array<double, 6> phi{1, x, y, 0.5 * x * x, x * y, 0.5 * y * y};
-      for (int i = 0; i < 6; ++i) {
-        for (int k = 0; k < 6; ++k) a[i][k] += phi[i] * phi[k];
-        a[i][6] += phi[i] * values[w];
-      }
-    }
-    std::array<double, 6> c{};
-    if (!solve6(a, c)) continue;
-    const double s = 1 / (hs * hs);
-    hess[v] = {c[3] * s, c[4] * s, c[5] * s};
   }
   return hess;
 }
