@@ -54,6 +54,7 @@ void Refiner::run() {
 void Refiner::setup() {
   n_input_ = pts_.size();
   st_.input_vertices = n_input_;
+  set_unit();
   const double theta = std::clamp(opt_.min_angle_deg, 0.0, 60.0);
   shortest_first_ = opt_.order == RefineOrder::ShortestEdgeFirst;
   best_ = (opt_.steiner == SteinerRule::Best || opt_.steiner == SteinerRule::Grid) && theta > 0;
@@ -104,6 +105,19 @@ void Refiner::setup() {
   seg_of_.assign(n_input_, kNone);
   if (!m_.vertex_markers().empty()) m_.vertex_markers().resize(n_input_, 0);
   reserve_for_area_bounds();
+}
+
+// The input's unit length: the larger side of the bounding box of the
+// vertices (1 when that is not a positive finite length).
+void Refiner::set_unit() {
+  double lox = INFINITY, hix = -INFINITY, loy = INFINITY, hiy = -INFINITY;
+  for (const Point& p : pts_) {
+    lox = std::min(lox, p.x), hix = std::max(hix, p.x);
+    loy = std::min(loy, p.y), hiy = std::max(hiy, p.y);
+  }
+  const double u = std::max(hix - lox, hiy - loy);
+  unit_ = u > 0 && std::isfinite(u) ? u : 1.0;
+  inv_unit2_ = 1.0 / (unit_ * unit_);
 }
 
 // The angle criterion and what depends on it.

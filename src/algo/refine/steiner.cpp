@@ -20,6 +20,23 @@
 
 namespace deltamesh::refinement {
 
+namespace {
+
+// Candidate (bad, r2) beats the best so far: fewer skinny triangles left, or
+// as many and farther from every vertex by more than a relative 2^-24.
+// Symmetric candidates tie in exact arithmetic (equidistant from two
+// vertices); without the margin their rounding noise would pick one, and an
+// input scaled by a factor other than a power of two (rounded) would pick
+// another and refine differently from there on.
+constexpr double kTieMargin = 1.0 + 0x1p-24;
+// Relative distance within which a candidate counts as on a circle or a line.
+constexpr double kNear = 0x1p-26;
+bool beats(int bad, double r2, int best_bad, double best_r2) {
+  return bad < best_bad || (bad == best_bad && r2 > best_r2 * kTieMargin);
+}
+
+}  // namespace
+
 // Scores candidate c for bad triangle t: its cavity must hold t (c inside
 // t's circumcircle), be star-shaped from c, touch no segment c encroaches, and
 // keep c at least sqrt(min2) away from every vertex (no edge shorter than
@@ -90,7 +107,7 @@ Point Refiner::grid_point(TriId t, const Eval& ev, const Point& primary) {
       if (b.outer != kNone && eval(tri_of(b.outer)).large) return primary;
   const double tan_a = std::tan(bound_rad_);
   const auto consider = [&](double y, double s) {
-    if (y >= ymax || y <= 0) return;
+    if (y >= ymax * (1 - kNear) || y <= 0) return;
     // Angles at P and Q, then at the new vertex (sine rule), at least the bound.
     if (y < tan_a * (0.5 + s) || y < tan_a * (0.5 - s)) return;
     const double a2 = (0.5 + s) * (0.5 + s) + y * y, b2 = (0.5 - s) * (0.5 - s) + y * y;
@@ -99,7 +116,7 @@ Point Refiner::grid_point(TriId t, const Eval& ev, const Point& primary) {
     int bad;
     double r2;
     if (!score(t, c, min2, bad, r2)) return;
-    if (bad < best_bad || (bad == best_bad && r2 > best_r2)) {
+    if (beats(bad, r2, best_bad, best_r2)) {
       best_bad = bad, best_r2 = r2, best = c;
       best_y = y, best_s = s;
     }
@@ -187,6 +204,16 @@ bool Refiner::gather_petal(TriId t, const Point& centre, double radius) {
   return true;
 }
 
+// Whether c lies within a relative kNear of the boundary of segment ab's
+// encroachment region (its diametral circle, or lens): a degenerate place,
+// refused like the other near cases of score_local().
+bool Refiner::near_encroachment(const Point& a, const Point& b, const Point& c) const {
+  const double ax = a.x - c.x, ay = a.y - c.y, bx = b.x - c.x, by = b.y - c.y;
+  const double dot = ax * bx + ay * by, ab2 = (ax * ax + ay * ay) * (bx * bx + by * by);
+  if (dot * dot <= kNear * kNear * ab2) return true;
+  return lens_ && dot < 0 && std::fabs(dot * dot - lens_cos2_ * ab2) <= kNear * ab2;
+}
+
 // score() on the gathered neighbourhood: the cavity of c grown by its
 // triangles' circles, with the same tests on its boundary edges. Only a
 // point that beats (best_bad, best_r2) matters: scoring stops (false) as
@@ -196,11 +223,17 @@ bool Refiner::score_local(const Point& c, double min2, int best_bad, double best
     std::fill(petal_in_.begin(), petal_in_.end(), 0);
     petal_stamp_ = 1;
   }
+  // A candidate within a relative kNear of a circumcircle, or of the line
+  // of a cavity edge, is degenerate there: rounding (an input scaled by
+  // 10^k) decides its side, so it is refused rather than scored.
+  bool near = false;
   const auto inside = [&](const PetalTri& pt) {
     const double dx = c.x - pt.cx, dy = c.y - pt.cy;
-    return dx * dx + dy * dy < pt.r2;
+    const double d2 = dx * dx + dy * dy;
+    near |= std::fabs(d2 - pt.r2) <= kNear * pt.r2;
+    return d2 < pt.r2;
   };
-  if (!inside(petal_[0])) return false;
+  if (!inside(petal_[0]) || near) return false;
   bad = 0;
   radius2 = INFINITY;
   petal_stack_.clear();
@@ -213,7 +246,9 @@ bool Refiner::score_local(const Point& c, double min2, int best_bad, double best
       const std::int32_t j = pt.nb[k];
       if (j >= 0) {
         if (petal_in_[j] == petal_stamp_) continue;
-        if (inside(petal_[j])) {
+        const bool in = inside(petal_[j]);
+        if (near) return false;
+        if (in) {
           petal_in_[j] = petal_stamp_;
           petal_stack_.push_back(j);
           continue;
@@ -223,13 +258,14 @@ bool Refiner::score_local(const Point& c, double min2, int best_bad, double best
       const Point& B = pts_[pt.v[k == 2 ? 0 : k + 1]];
       const double cross = (B.x - A.x) * (c.y - A.y) - (B.y - A.y) * (c.x - A.x);
       if (!(cross > 0)) return false;
-      if (j == kWall && encroaches(A, B, c)) return false;
       const double la = dist2(A, c), lb = dist2(B, c), lab = dist2(A, B);
+      if (cross * cross <= kNear * kNear * lab * std::max(la, lb)) return false;
+      if (j == kWall && (encroaches(A, B, c) || near_encroachment(A, B, c))) return false;
       radius2 = std::min({radius2, la, lb});
       if (radius2 < min2) return false;
       const double lo = std::min({la, lb, lab});
       if (cross * cross * lo < sin2_bound_ * la * lb * lab) ++bad;
-      if (bad > best_bad || (bad == best_bad && radius2 <= best_r2)) return false;
+      if (bad > best_bad || (bad == best_bad && radius2 <= best_r2 * kTieMargin)) return false;
     }
   }
   return true;
@@ -269,7 +305,7 @@ Point Refiner::best_point(TriId t, const Eval& ev, const Point& primary) {
   double best_y = ymax, best_s = 0;
   const double tan_a = std::tan(bound_rad_);
   const auto consider = [&](double y, double s) {
-    if (y >= ymax || y <= 0) return false;
+    if (y >= ymax * (1 - kNear) || y <= 0) return false;  // up to the primary (not at it: degenerate)
     if (y < tan_a * (0.5 + s) || y < tan_a * (0.5 - s)) return false;
     const double a2 = (0.5 + s) * (0.5 + s) + y * y, b2 = (0.5 - s) * (0.5 - s) + y * y;
     if (y * y * std::min({1.0, a2, b2}) < sin2_bound_ * a2 * b2) return false;
@@ -277,7 +313,7 @@ Point Refiner::best_point(TriId t, const Eval& ev, const Point& primary) {
     int bad;
     double r2;
     if (!score_local(c, min2, best_bad, best_r2, bad, r2)) return false;
-    if (!(bad < best_bad || (bad == best_bad && r2 > best_r2))) return false;
+    if (!beats(bad, r2, best_bad, best_r2)) return false;
     best_bad = bad, best_r2 = r2, best = c;
     best_y = y, best_s = s;
     return true;
@@ -316,7 +352,7 @@ Point Refiner::best_point(TriId t, const Eval& ev, const Point& primary) {
   int bad;
   double r2;
   if (!score(t, best, min2, bad, r2)) return primary;
-  if (bad < primary_bad || (bad == primary_bad && r2 > primary_r2)) return best;
+  if (beats(bad, r2, primary_bad, primary_r2)) return best;
   return primary;
 }
 
