@@ -22,6 +22,7 @@
 #include "algo/refine/refiner.hpp"
 #include "algo/refine/steiner.hpp"
 #include "deltamesh/progress.hpp"
+#include "mesh/canonical.hpp"
 
 namespace deltamesh::refinement {
 
@@ -117,7 +118,7 @@ void Refiner::set_unit() {
   }
   const double u = std::max(hix - lox, hiy - loy);
   unit_ = u > 0 && std::isfinite(u) ? u : 1.0;
-  inv_unit2_ = 1.0 / (unit_ * unit_);
+  key_scale_ = std::numbers::pi / 4 / (unit_ * unit_);
 }
 
 // The angle criterion and what depends on it.
@@ -425,6 +426,9 @@ RefineStats refine(Mesh& mesh, const RefineOptions& options) {
   if (std::optional<RefineStats> in_parts = detail::refine_in_parts(mesh, options)) return *in_parts;
   RefineStats stats;
   if (!mesh.compacted()) mesh.compact();
+  // Slots in an order of the triangulation's own (not of how it was built):
+  // the queue, the walks and the new slots follow it.
+  detail::canonical_triangle_order(mesh);
   stats.input_vertices = mesh.num_vertices();
   stats.min_angle_deg = options.min_angle_deg;
   if (mesh.num_triangles() == 0) return stats;

@@ -64,7 +64,7 @@ void Refiner::consider(TriId t) {
   if (!ev.skinny && !ev.large) return;
   const QueueEntry q{t, tv_[3 * t], tv_[3 * t + 1], tv_[3 * t + 2]};
   if (ev.skinny)
-    queue_.push_skinny(shortest_first_ ? shortest_edge_key(ev.shortest2 * inv_unit2_) : worst_quality_key(ev.sin2, sin2_bound_), q);
+    queue_.push_skinny(shortest_first_ ? shortest_edge_key(ev.shortest2 * key_scale_) : worst_quality_key(ev.sin2, sin2_bound_), q);
   else
     queue_.push_large(q);
 }

@@ -276,7 +276,11 @@ class Refiner {
   // scaling the input by any factor (not only a power of two) scales the
   // mesh with it (docs/robustness.md, "Any finite coordinates").
   double unit_ = 1;
-  double inv_unit2_ = 1;          // 1 / unit_^2
+  // The queue's keys are squared lengths times pi/4 / unit_^2: a
+  // transcendental factor keeps the buckets' bounds off the ratios inputs
+  // make exactly (halvings of a segment as long as the box, grid
+  // diagonals), where rounding would pick the bucket.
+  double key_scale_ = 1;
   bool has_markers_ = false;
   double shell_cos_ = -2;       // input vertices whose smallest segment angle has a larger cosine get shells
   double small_cos2_ = 0.25;    // cos^2 of the largest input angle the small-angle rule treats as small
