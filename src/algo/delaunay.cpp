@@ -12,6 +12,7 @@
 #include "algo/delaunay_parallel.hpp"
 #include "algo/insertion.hpp"
 #include "core/parallel.hpp"
+#include "algo/normalize.hpp"
 #include "core/spatial_sort.hpp"
 #include "deltamesh/errors.hpp"
 #include "deltamesh/predicates.hpp"
@@ -127,6 +128,16 @@ class BulkBuilder {
 }  // namespace
 
 Mesh delaunay(std::span<const Point> points, const DelaunayOptions& options, DelaunayStats* stats) {
+  if (detail::needs_frame(points)) {  // beyond the predicates' range: in an exact power-of-two frame
+    const detail::Frame f = detail::frame_for(points);
+    std::vector<Point> framed(points.begin(), points.end());
+    detail::scale_vertices(f, framed);
+    if (options.trace) detail::TraceAccess::set_frame(*options.trace, f.k);
+    Mesh mesh = delaunay(framed, options, stats);
+    if (options.trace) detail::TraceAccess::set_frame(*options.trace, 0);
+    detail::restore(f, mesh);
+    return mesh;
+  }
   check_coordinates(points);
   const std::size_t n = points.size();
   if (n >= kNone - 2) throw InputError("too many points: at most 4294967292 are supported");

@@ -10,6 +10,7 @@
 
 #include "deltamesh/errors.hpp"
 #include "deltamesh/predicates.hpp"
+#include "algo/normalize.hpp"
 #include "algo/validate_overlap.hpp"
 #include "algo/vertex_data.hpp"
 #include "mesh/edge_rules.hpp"
@@ -174,6 +175,17 @@ void finish_vertex_markers(Mesh& mesh) {
 }
 
 Mesh triangulate(const Pslg& pslg, const TriangulateOptions& options, TriangulateStats* stats) {
+  if (detail::needs_frame(pslg.points)) {  // beyond the predicates' range: in an exact power-of-two frame
+    const detail::Frame f = detail::frame_for(pslg.points);
+    TriangulateOptions framed = options;
+    if (framed.refine) detail::scale_options(f, *framed.refine);
+    if (options.trace) detail::TraceAccess::set_frame(*options.trace, f.k);
+    Mesh mesh = triangulate(detail::scaled_pslg(f, pslg), framed, stats);
+    if (options.trace) detail::TraceAccess::set_frame(*options.trace, 0);
+    detail::restore(f, mesh);
+    if (stats) detail::restore(f, stats->refine);
+    return mesh;
+  }
   const auto t_start = Clock::now();
   TriangulateStats local;
   TriangulateStats& st = stats ? *stats : local;

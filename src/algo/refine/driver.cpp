@@ -17,6 +17,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "algo/normalize.hpp"
 #include "algo/refine/cavity.hpp"
 #include "algo/refine_parallel.hpp"
 #include "algo/refine/refiner.hpp"
@@ -423,6 +424,24 @@ namespace deltamesh {
 using refinement::Refiner;
 
 RefineStats refine(Mesh& mesh, const RefineOptions& options) {
+  if (detail::needs_frame(mesh.points())) {  // beyond the predicates' range: in an exact power-of-two frame
+    const detail::Frame f = detail::frame_for(mesh.points());
+    RefineOptions framed = options;
+    detail::scale_options(f, framed);
+    detail::scale_mesh(f, mesh);
+    struct Restore {  // also when refinement throws (a sizing callback)
+      const detail::Frame& f;
+      Mesh& m;
+      ~Restore() {
+        detail::restore(f, m);
+        if (m.trace()) detail::TraceAccess::set_frame(*m.trace(), 0);
+      }
+    } restore_on_exit{f, mesh};
+    if (mesh.trace()) detail::TraceAccess::set_frame(*mesh.trace(), f.k);
+    RefineStats stats = refine(mesh, framed);
+    detail::restore(f, stats);
+    return stats;
+  }
   if (std::optional<RefineStats> in_parts = detail::refine_in_parts(mesh, options)) return *in_parts;
   RefineStats stats;
   if (!mesh.compacted()) mesh.compact();
