@@ -119,7 +119,7 @@ void Refiner::set_unit() {
   }
   const double u = std::max(hix - lox, hiy - loy);
   unit_ = u > 0 && std::isfinite(u) ? u : 1.0;
-  key_scale_ = std::numbers::pi / 4 / (unit_ * unit_);
+  key_scale_ = 1.0 / (unit_ * unit_);
 }
 
 // The angle criterion and what depends on it.

@@ -60,7 +60,9 @@ double grid_radius(double lo, double hi, double unit) {
   int ex;
   std::frexp(hi / unit, &ex);  // hi < unit 2^ex, up to rounding
   for (double step = std::ldexp(unit, ex + 1); step > 0; step *= 0.5) {
-    const double r = std::floor(h / step) * step;
+    // A radius already on the grid (m step, rounded) must give m again:
+    // h / step is rounded too, so the floor allows a relative 2^-40.
+    const double r = std::floor(h / step * (1 + 0x1p-40)) * step;
     if (r >= l) return r;
   }
   return 0.5 * (lo + hi);

@@ -276,10 +276,11 @@ class Refiner {
   // scaling the input by any factor (not only a power of two) scales the
   // mesh with it (docs/robustness.md, "Any finite coordinates").
   double unit_ = 1;
-  // The queue's keys are squared lengths times pi/4 / unit_^2: a
-  // transcendental factor keeps the buckets' bounds off the ratios inputs
-  // make exactly (halvings of a segment as long as the box, grid
-  // diagonals), where rounding would pick the bucket.
+  // The queue's keys are squared lengths over unit_^2. (Known limit: a
+  // ratio exactly at a bucket's bound, a power of two such as the halvings of
+  // a segment as long as the box, is put on either side by rounding. Moving
+  // the bounds off such ratios changed the order enough to make the hub
+  // tests, whose lengths are powers of two, cascade.)
   double key_scale_ = 1;
   bool has_markers_ = false;
   double shell_cos_ = -2;       // input vertices whose smallest segment angle has a larger cosine get shells
@@ -333,6 +334,7 @@ class Refiner {
     VertexId v[3];
     std::int32_t nb[3];
     double cx, cy, r2;
+    double r2_in, r2_out;  // r2 shrunk and grown by kNear (steiner.cpp): between them, degenerate
   };
   static constexpr std::int32_t kOut = -1, kWall = -2;
   std::vector<PetalTri> petal_;

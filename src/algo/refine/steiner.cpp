@@ -161,6 +161,8 @@ bool Refiner::gather_petal(TriId t, const Point& centre, double radius) {
     pt.cy = A.y + uy;
     pt.r2 = ux * ux + uy * uy;
     if (!(d > 0) || !std::isfinite(pt.r2)) pt.cx = A.x, pt.cy = A.y, pt.r2 = INFINITY;
+    pt.r2_in = pt.r2 * (1 - kNear);
+    pt.r2_out = pt.r2 * (1 + kNear);
   };
   const auto meets = [&](const PetalTri& pt) {
     const double dx = pt.cx - centre.x, dy = pt.cy - centre.y;
@@ -230,10 +232,12 @@ bool Refiner::score_local(const Point& c, double min2, int best_bad, double best
   const auto inside = [&](const PetalTri& pt) {
     const double dx = c.x - pt.cx, dy = c.y - pt.cy;
     const double d2 = dx * dx + dy * dy;
-    near |= std::fabs(d2 - pt.r2) <= kNear * pt.r2;
-    return d2 < pt.r2;
+    if (d2 < pt.r2_in) return true;
+    near = d2 <= pt.r2_out;
+    return false;
   };
-  if (!inside(petal_[0]) || near) return false;
+  if (!inside(petal_[0])) return false;
+  const double beat_r2 = best_r2 * kTieMargin;
   bad = 0;
   radius2 = INFINITY;
   petal_stack_.clear();
@@ -246,26 +250,28 @@ bool Refiner::score_local(const Point& c, double min2, int best_bad, double best
       const std::int32_t j = pt.nb[k];
       if (j >= 0) {
         if (petal_in_[j] == petal_stamp_) continue;
-        const bool in = inside(petal_[j]);
-        if (near) return false;
-        if (in) {
+        if (inside(petal_[j])) {
           petal_in_[j] = petal_stamp_;
           petal_stack_.push_back(j);
           continue;
         }
+        if (near) return false;
       }
       const Point& A = pts_[pt.v[k]];
       const Point& B = pts_[pt.v[k == 2 ? 0 : k + 1]];
       const double cross = (B.x - A.x) * (c.y - A.y) - (B.y - A.y) * (c.x - A.x);
       if (!(cross > 0)) return false;
-      const double la = dist2(A, c), lb = dist2(B, c), lab = dist2(A, B);
-      if (cross * cross <= kNear * kNear * lab * std::max(la, lb)) return false;
       if (j == kWall && (encroaches(A, B, c) || near_encroachment(A, B, c))) return false;
+      const double la = dist2(A, c), lb = dist2(B, c), lab = dist2(A, B);
       radius2 = std::min({radius2, la, lb});
       if (radius2 < min2) return false;
       const double lo = std::min({la, lb, lab});
-      if (cross * cross * lo < sin2_bound_ * la * lb * lab) ++bad;
-      if (bad > best_bad || (bad == best_bad && radius2 <= best_r2 * kTieMargin)) return false;
+      if (cross * cross * lo < sin2_bound_ * la * lb * lab) {
+        // Skinny, and maybe c on the line of AB (then degenerate).
+        if (cross * cross <= kNear * kNear * lab * std::max(la, lb)) return false;
+        ++bad;
+      }
+      if (bad > best_bad || (bad == best_bad && radius2 <= beat_r2)) return false;
     }
   }
   return true;
