@@ -128,7 +128,16 @@ class BulkBuilder {
 }  // namespace
 
 Mesh delaunay(std::span<const Point> points, const DelaunayOptions& options, DelaunayStats* stats) {
-  if (detail::needs_frame(points)) {  // beyond the predicates' range: in an exact power-of-two frame
+  // Beyond the predicates' range: in an exact power-of-two frame. In range
+  // this costs nothing: check_coordinates' own scan finds it out.
+  bool framed_run = false;
+  try {
+    check_coordinates(points);
+  } catch (const VertexError&) {
+    if (!detail::needs_frame(points)) throw;
+    framed_run = true;
+  }
+  if (framed_run) {
     const detail::Frame f = detail::frame_for(points);
     std::vector<Point> framed(points.begin(), points.end());
     detail::scale_vertices(f, framed);
@@ -138,7 +147,6 @@ Mesh delaunay(std::span<const Point> points, const DelaunayOptions& options, Del
     detail::restore(f, mesh);
     return mesh;
   }
-  check_coordinates(points);
   const std::size_t n = points.size();
   if (n >= kNone - 2) throw InputError("too many points: at most 4294967292 are supported");
   if (!options.keep_ghosts && !options.trace) {  // a traced run is the sequential one, step by step

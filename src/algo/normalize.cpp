@@ -116,9 +116,18 @@ void scale_seeds(const Frame& f, std::vector<Point>& points) {
 }
 
 bool needs_frame(std::span<const Point> points) {
+  const double hi = kMaxCoordinate, lo = kMinCoordinate;
+  // One branch-free pass (NaN fails every comparison); an infinity also
+  // flags it, so a flagged input is looked at again for a finite culprit.
+  bool out = false;
+  for (const Point& p : points) {
+    const double ax = std::fabs(p.x), ay = std::fabs(p.y);
+    out |= (ax > hi) | (ay > hi) | ((ax < lo) & (ax != 0)) | ((ay < lo) & (ay != 0));
+  }
+  if (!out) return false;
   for (const Point& p : points)
     for (const double v : {std::fabs(p.x), std::fabs(p.y)})
-      if (std::isfinite(v) && (v > kMaxCoordinate || (v < kMinCoordinate && v != 0))) return true;
+      if (std::isfinite(v) && (v > hi || (v < lo && v != 0))) return true;
   return false;
 }
 
