@@ -349,7 +349,10 @@ TEST(Regress, AdaptSteinerBudgetCoversTheRefinementAfterSmoothing) {
   dm::Mesh m = dm::triangulate(g, topt);
   dm::RefineOptions ro;
   ro.min_angle_deg = 30;
-  ro.max_steiner = 400;
+  // 300 (the file's 400 before refinement's scale-free order, issue 20:
+  // then adapt's first refinement took the whole budget and the one after
+  // smoothing never ran).
+  ro.max_steiner = 300;
   dm::refine(m, ro);
   ASSERT_TRUE(dm::check(m, {.convex_hull = false}).ok());
   dm::AdaptOptions ao;

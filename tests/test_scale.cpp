@@ -55,6 +55,11 @@ RunResult mesh(const std::string& switches, const Pslg& in, double area = 0) {
 
 double min_angle(const Mesh& m) { return quality_report(m).min_angle_deg; }
 
+bool quick() {  // DELTAMESH_TEST_QUICK: fewer scales
+  const char* q = std::getenv("DELTAMESH_TEST_QUICK");
+  return q != nullptr && *q != '\0' && *q != '0';
+}
+
 }  // namespace
 
 // 2^k: bit-for-bit the same mesh up to the scale, for k where the input and
@@ -102,20 +107,53 @@ TEST(Scale, PowersOfTwoGiveTheSameMeshBitForBit) {
   }
 }
 
-// 10^k (rounded, so not the same input): nearly the same mesh. Refinement
-// reacts to an ulp's change of the input like any change (at scale 1,
-// moving the holed square's points by 1-5 ulps gives 282-287 triangles at
-// -q30, and other smallest angles), so this is not the 1% / 0.01°:
-// the counts agree within 5% (measured: up to 3.9%), every run meets the
-// bound outside small input angles, and the exact scale-freedom is the 2^k
-// test above. The meshes have an area bound of 1/1000 of the box.
-TEST(Scale, PowersOfTenGiveNearlyTheSameMesh) {
+// 10^k (rounded, so not the same input): the same mesh but for rounding.
+// Refinement is laid out in the input's own unit (its box), its candidate
+// points shun degenerate places rounding would decide, and it starts from a
+// canonical numbering (src/mesh/canonical.hpp), so the meshes agree: the
+// triangle count within 1% and the smallest angle within 0.01 degrees (the
+// issue's bounds; measured: identical counts and angles on these inputs).
+void expect_powers_of_ten_agree(const test::ScaleInput& input) {
+  SCOPED_TRACE(input.name);
+  const RunResult base = mesh("-pq30", input.pslg);
+  expect_valid(base.mesh);
+  const double n0 = double(base.mesh.num_triangles()), a0 = min_angle(base.mesh);
+  ASSERT_GT(n0, 0);
+  const std::vector<int> ks = quick() ? std::vector<int>{-60, -3, 12, 200}
+                                                  : std::vector<int>{-200, -60, -12, -3, 3, 12, 60, 200};
+  for (int k : ks) {
+    SCOPED_TRACE("10^" + std::to_string(k));
+    const RunResult r = mesh("-pq30", test::scaled_pslg(input.pslg, std::pow(10.0, k)));
+    expect_valid_scaled(r.mesh, int(std::lround(k * std::log2(10.0))));
+    EXPECT_LE(std::fabs(double(r.mesh.num_triangles()) - n0), 0.01 * n0) << r.mesh.num_triangles() << " vs " << n0;
+    EXPECT_NEAR(min_angle(r.mesh), a0, 0.01);
+    EXPECT_EQ(r.complete(), base.complete()) << r.stats.refine.summary();
+  }
+}
+
+TEST(Scale, PowersOfTenGiveTheSameMeshButForRounding) {
+  for (const test::ScaleInput& input : test::scale_inputs(false))
+    if (input.name == "plate" || input.name == "holed square") expect_powers_of_ten_agree(input);
+}
+
+TEST(Scale, PowersOfTenGiveTheSameMeshButForRoundingOnTheCorpus) {
+  std::error_code ec;
+  if (!fs::exists(test::corpus_dir(), ec)) GTEST_SKIP() << "no corpus at " << test::corpus_dir() << ": examples only";
+  for (const test::ScaleInput& input : test::scale_inputs(false))
+    if (input.name != "plate" && input.name != "holed square") expect_powers_of_ten_agree(input);
+}
+
+// With an area bound (1/1000 of the box, times 10^2k where that stays a
+// normal double) the meshes are larger and still nearly the same, but not
+// yet within the bounds: counts within 5% (measured: up to 2.3%),
+// and the bound is met. Known gap (docs/robustness.md).
+TEST(Scale, PowersOfTenWithAnAreaBoundGiveNearlyTheSameMesh) {
   for (const test::ScaleInput& input : test::scale_inputs(false)) {
     SCOPED_TRACE(input.name);
     const double area = input.area / 5;
     const RunResult base = mesh("-pq30", input.pslg, area);
     const double n0 = double(base.mesh.num_triangles()), a0 = min_angle(base.mesh);
-    for (int k : {-150, -60, -12, 12, 60, 150}) {  // the area bound scales by 10^2k
+    for (int k : {-150, -60, -12, 12, 60, 150}) {
       SCOPED_TRACE("10^" + std::to_string(k));
       const double s = std::pow(10.0, k);
       const RunResult r = mesh("-pq30", test::scaled_pslg(input.pslg, s), area * s * s);
@@ -127,6 +165,55 @@ TEST(Scale, PowersOfTenGiveNearlyTheSameMesh) {
         EXPECT_GE(min_angle(r.mesh), 30.0);
       }
     }
+  }
+}
+
+// The lower-level library calls mesh in a power-of-two frame only when
+// their input is beyond the predicates' range (2^+-200), so an input scaled
+// by 2^k out of that range gives the in-range mesh times 2^k, bit for bit;
+// in-range calls do not pass through the frame.
+TEST(Scale, LibraryCallsBeyondThePredicatesRangeMeshInAFrame) {
+  // Largest magnitude in [1/2, 1): the frame of its scaled copies is itself.
+  Pslg p = test::holed_square();
+  for (Point& q : p.points) q = {q.x * 0.75, q.y * 0.75};
+  for (Point& q : p.holes) q = {q.x * 0.75, q.y * 0.75};
+  const auto same_scaled = [](const Mesh& a, const Mesh& b, int k) {
+    ASSERT_EQ(a.num_vertices(), b.num_vertices());
+    ASSERT_EQ(a.num_triangle_slots(), b.num_triangle_slots());
+    for (VertexId v = 0; v < a.num_vertices(); ++v) {
+      const Point& q = a.point(v);
+      ASSERT_EQ(b.point(v), (Point{std::ldexp(q.x, k), std::ldexp(q.y, k)})) << "vertex " << v;
+    }
+    for (TriId t = 0; t < a.num_triangle_slots(); ++t) ASSERT_EQ(a.triangle(t), b.triangle(t));
+  };
+  TriangulateOptions topt;
+  topt.refine = RefineOptions{};
+  topt.refine->min_angle_deg = 30;
+  topt.refine->max_area = 0.002;
+  const Mesh base = triangulate(p, topt);
+  expect_valid(base);
+  ASSERT_GT(base.num_triangles(), 100u);
+  const Mesh points_base = delaunay(p.points);
+  for (int k : {-450, -300, 300, 450}) {  // the area bound times 2^2k stays normal
+    SCOPED_TRACE("2^" + std::to_string(k));
+    const Pslg scaled = test::scaled_pslg(p, std::ldexp(1.0, k));
+    TriangulateOptions o = topt;
+    o.refine->max_area = std::ldexp(topt.refine->max_area, 2 * k);
+    const Mesh m = triangulate(scaled, o);
+    expect_valid_scaled(m, k);
+    same_scaled(base, m, k);
+    same_scaled(points_base, delaunay(scaled.points), k);
+    // refine() on a mesh beyond the range: the mesh comes back in the
+    // user's coordinates, refined as in range.
+    TriangulateOptions plain;
+    Mesh coarse = triangulate(scaled, plain);
+    RefineOptions ro = *o.refine;
+    const RefineStats st = refine(coarse, ro);
+    EXPECT_TRUE(st.complete) << st.summary();
+    expect_valid_scaled(coarse, k);
+    Mesh coarse0 = triangulate(p, plain);
+    refine(coarse0, *topt.refine);
+    same_scaled(coarse0, coarse, k);
   }
 }
 

@@ -33,9 +33,12 @@ struct DelaunayStats {
 // Delaunay triangulation of `points` by incremental insertion in Hilbert
 // order with walking point location and exact predicates. Vertex ids in the
 // result are the input indices; duplicates stay as vertices in no triangle
-// and are reported in `stats`. Throws InputError for non-finite or
-// out-of-range coordinates, and when all points are collinear (or fewer than
-// three distinct points), since no triangle exists then.
+// and are reported in `stats`. Coordinates beyond the exact predicates'
+// range (2^+-200) are meshed in an exact power-of-two frame and mapped back
+// (docs/robustness.md, "Any finite coordinates"). Throws InputError for
+// non-finite coordinates, a nonzero one about 2^400 below the largest, and
+// when all points are collinear (or fewer than three distinct points),
+// since no triangle exists then.
 Mesh delaunay(std::span<const Point> points, const DelaunayOptions& options = {},
               DelaunayStats* stats = nullptr);
 

@@ -226,6 +226,9 @@ inline constexpr double kPrecisionFloor = 0x1p-36;
 // Vertices keep their ids; Steiner points are appended. Segment splits keep
 // the segment's marker on both halves. Returns what happened; never throws
 // for a budget or an unreachable bound.
+// A mesh with coordinates beyond the exact predicates' range (2^+-200) is
+// refined in an exact power-of-two frame (its bounds scaled with it) and
+// mapped back; in range it is refined as is.
 RefineStats refine(Mesh& mesh, const RefineOptions& options = {});
 
 std::string_view to_string(SteinerRule r);

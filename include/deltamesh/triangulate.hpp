@@ -87,7 +87,10 @@ struct TriangulateStats {
 // first such segment in input order, then any); otherwise a vertex on the mesh
 // boundary gets 1; otherwise 0. Vertex attributes are copied; a vertex added
 // where segments cross gets them interpolated linearly along a segment
-// through it. Throws InputError (and IntersectingSegments under strict).
+// through it. Coordinates beyond the exact predicates' range (2^+-200) are
+// meshed in an exact power-of-two frame (area and length bounds scaled with
+// it) and mapped back. Throws InputError (and IntersectingSegments under
+// strict).
 Mesh triangulate(const Pslg& pslg, const TriangulateOptions& options = {}, TriangulateStats* stats = nullptr);
 
 // The end of Triangle's vertex-marker rule on a finished (compacted) mesh,

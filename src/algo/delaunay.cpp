@@ -12,6 +12,7 @@
 #include "algo/delaunay_parallel.hpp"
 #include "algo/insertion.hpp"
 #include "core/parallel.hpp"
+#include "algo/normalize.hpp"
 #include "core/spatial_sort.hpp"
 #include "deltamesh/errors.hpp"
 #include "deltamesh/predicates.hpp"
@@ -127,7 +128,25 @@ class BulkBuilder {
 }  // namespace
 
 Mesh delaunay(std::span<const Point> points, const DelaunayOptions& options, DelaunayStats* stats) {
-  check_coordinates(points);
+  // Beyond the predicates' range: in an exact power-of-two frame. In range
+  // this costs nothing: check_coordinates' own scan finds it out.
+  bool framed_run = false;
+  try {
+    check_coordinates(points);
+  } catch (const VertexError&) {
+    if (!detail::needs_frame(points)) throw;
+    framed_run = true;
+  }
+  if (framed_run) {
+    const detail::Frame f = detail::frame_for(points);
+    std::vector<Point> framed(points.begin(), points.end());
+    detail::scale_vertices(f, framed);
+    if (options.trace) detail::TraceAccess::set_frame(*options.trace, f.k);
+    Mesh mesh = delaunay(framed, options, stats);
+    if (options.trace) detail::TraceAccess::set_frame(*options.trace, 0);
+    detail::restore(f, mesh);
+    return mesh;
+  }
   const std::size_t n = points.size();
   if (n >= kNone - 2) throw InputError("too many points: at most 4294967292 are supported");
   if (!options.keep_ghosts && !options.trace) {  // a traced run is the sequential one, step by step

@@ -127,6 +127,53 @@ void scale_seeds(const Frame& f, std::vector<Point>& points) {
     }
 }
 
+bool needs_frame(std::span<const Point> points) {
+  const double hi = kMaxCoordinate, lo = kMinCoordinate;
+  // One branch-free pass (NaN fails every comparison); an infinity also
+  // flags it, so a flagged input is looked at again for a finite culprit.
+  bool out = false;
+  for (const Point& p : points) {
+    const double ax = std::fabs(p.x), ay = std::fabs(p.y);
+    out |= (ax > hi) | (ay > hi) | ((ax < lo) & (ax != 0)) | ((ay < lo) & (ay != 0));
+  }
+  if (!out) return false;
+  for (const Point& p : points)
+    for (const double v : {std::fabs(p.x), std::fabs(p.y)})
+      if (std::isfinite(v) && (v > hi || (v < lo && v != 0))) return true;
+  return false;
+}
+
+Pslg scaled_pslg(const Frame& f, Pslg pslg) {
+  scale_vertices(f, pslg.points);
+  scale_seeds(f, pslg.holes);
+  std::vector<Point> seeds;
+  for (const RegionSeed& r : pslg.regions) seeds.push_back(r.p);
+  scale_seeds(f, seeds);
+  for (std::size_t i = 0; i < seeds.size(); ++i) {
+    pslg.regions[i].p = seeds[i];
+    pslg.regions[i].max_area = f.area_to(pslg.regions[i].max_area);
+  }
+  return pslg;
+}
+
+void scale_options(const Frame& f, RefineOptions& options) {
+  options.max_area = f.area_to(options.max_area);
+  options.max_area_at = f.area_field_to(std::move(options.max_area_at));
+  options.max_edge_at = f.length_field_to(std::move(options.max_edge_at));
+}
+
+void scale_mesh(const Frame& f, Mesh& mesh) {
+  std::vector<Point>& points = detail::MeshEditor(mesh).points();
+  std::vector<Point> framed = points;
+  scale_vertices(f, framed);  // may throw: the mesh is left as it was
+  points.swap(framed);
+  if (mesh.has_triangle_area_bounds())
+    for (TriId t = 0; t < mesh.num_triangle_slots(); ++t) {
+      const double a = mesh.triangle_area_bound(t);
+      if (a > 0) mesh.set_triangle_area_bound(t, f.area_to(a));
+    }
+}
+
 void restore(const Frame& f, Mesh& mesh) {
   const double pk = power_of_two(-f.k);
   for (Point& p : detail::MeshEditor(mesh).points())

@@ -16,6 +16,7 @@
 
 #include "deltamesh/geometry.hpp"
 #include "deltamesh/mesh.hpp"
+#include "deltamesh/pslg.hpp"
 #include "deltamesh/refine.hpp"
 
 namespace deltamesh::detail {
@@ -47,6 +48,20 @@ void scale_vertices(const Frame& f, std::vector<Point>& points);
 // Hole and region seeds: scaled, clamped to +-2^100 (they stay outside the
 // vertices' box) and flushed to 0 below kMinCoordinate.
 void scale_seeds(const Frame& f, std::vector<Point>& points);
+
+// Whether these points need a frame before the exact predicates see them: a
+// finite nonzero coordinate outside [kMinCoordinate, kMaxCoordinate] in
+// magnitude. NaN and infinities answer false (the callers' own checks name
+// them). The library's lower-level entry points (delaunay(), triangulate(),
+// refine()) mesh in a frame only then, so in-range calls are unchanged.
+bool needs_frame(std::span<const Point> points);
+// A PSLG (points, holes, region seeds and their area bounds) scaled into f.
+Pslg scaled_pslg(const Frame& f, Pslg pslg);
+// Refinement's area and length bounds (global, callbacks) scaled into f.
+void scale_options(const Frame& f, RefineOptions& options);
+// A mesh's vertices and per-triangle area bounds into the frame (the
+// inverse of restore below).
+void scale_mesh(const Frame& f, Mesh& mesh);
 
 // Back to the user's frame: every vertex and per-triangle area bound.
 void restore(const Frame& f, Mesh& mesh);

@@ -64,10 +64,8 @@ QualityReport quality_report(const Mesh& mesh, const QualityOptions& opt, const 
     const double l2[3] = {squared_distance(s[0], s[1]), squared_distance(s[1], s[2]), squared_distance(s[2], s[0])};
     // Twice the area from an end of the shortest edge, with the shortest
     // edge chosen as the refinement chooses it (see its eval()).
-    double lo2 = l2[0], o1 = l2[1], o2 = l2[2];
-    int sh = 0;
-    if (l2[1] < lo2) lo2 = l2[1], o1 = l2[2], o2 = l2[0], sh = 1;
-    if (l2[2] < lo2) lo2 = l2[2], o1 = l2[0], o2 = l2[1], sh = 2;
+    const int sh = shortest_edge_index(l2);
+    const double o1 = l2[(sh + 1) % 3], o2 = l2[(sh + 2) % 3];
     const Point &P = s[sh], &Q = s[(sh + 1) % 3], &R = s[(sh + 2) % 3];
     const double cross = (Q.x - P.x) * (R.y - P.y) - (Q.y - P.y) * (R.x - P.x);
     const double shortest_s = std::sqrt(std::min({l2[0], l2[1], l2[2]}));

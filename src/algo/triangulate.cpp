@@ -10,6 +10,7 @@
 
 #include "deltamesh/errors.hpp"
 #include "deltamesh/predicates.hpp"
+#include "algo/normalize.hpp"
 #include "algo/validate_overlap.hpp"
 #include "algo/vertex_data.hpp"
 #include "mesh/edge_rules.hpp"
@@ -173,7 +174,11 @@ void finish_vertex_markers(Mesh& mesh) {
   }
 }
 
-Mesh triangulate(const Pslg& pslg, const TriangulateOptions& options, TriangulateStats* stats) {
+namespace {
+
+// triangulate() on coordinates in the predicates' range (else a VertexError
+// from the coordinate check, before any work).
+Mesh triangulate_in_range(const Pslg& pslg, const TriangulateOptions& options, TriangulateStats* stats) {
   const auto t_start = Clock::now();
   TriangulateStats local;
   TriangulateStats& st = stats ? *stats : local;
@@ -269,6 +274,30 @@ Mesh triangulate(const Pslg& pslg, const TriangulateOptions& options, Triangulat
   st.segments = count_constrained_edges(mesh);
   st.total_seconds = seconds_since(t_start);
   return mesh;
+}
+
+}  // namespace
+
+Mesh triangulate(const Pslg& pslg, const TriangulateOptions& options, TriangulateStats* stats) {
+  // Beyond the predicates' range: in an exact power-of-two frame. In range
+  // this costs nothing: the triangulation's own coordinate check finds it
+  // out (a VertexError before any work).
+  try {
+    return triangulate_in_range(pslg, options, stats);
+  } catch (const VertexError&) {
+    if (!detail::needs_frame(pslg.points)) throw;
+  }
+  {
+    const detail::Frame f = detail::frame_for(pslg.points);
+    TriangulateOptions framed = options;
+    if (framed.refine) detail::scale_options(f, *framed.refine);
+    if (options.trace) detail::TraceAccess::set_frame(*options.trace, f.k);
+    Mesh mesh = triangulate(detail::scaled_pslg(f, pslg), framed, stats);
+    if (options.trace) detail::TraceAccess::set_frame(*options.trace, 0);
+    detail::restore(f, mesh);
+    if (stats) detail::restore(f, stats->refine);
+    return mesh;
+  }
 }
 
 Mesh mesh_from_triangles(const Pslg& nodes, std::span<const VertexId> triangles, std::size_t num_attributes,

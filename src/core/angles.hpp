@@ -28,6 +28,20 @@ inline void scale_triangle(const Point& a, const Point& b, const Point& c, Point
 // Whether abc's products of differences may overflow or lose precision to
 // underflow (its edges are at least an ulp of its largest coordinate, about
 // 2^-53 of it, so a largest magnitude within 2^+-300 keeps them safe).
+// The local index i of a triangle's shortest edge (3t + i) from its squared
+// lengths, as refinement and the statistics both choose it: a later edge
+// wins only when shorter by more than a relative 2^-26, so the two equal
+// sides of an isosceles triangle (exact in the input, or made by a split)
+// are not told apart by rounding (an input scaled by 10^k), which would
+// move the off-centre to the other side.
+inline int shortest_edge_index(const double l2[3]) {
+  constexpr double kShorter = 1.0 - 0x1p-26;
+  int s = 0;
+  if (l2[1] < l2[0] * kShorter) s = 1;
+  if (l2[2] < l2[s] * kShorter) s = 2;
+  return s;
+}
+
 inline bool needs_scaling(const Point& a, const Point& b, const Point& c) {
   const double m = std::max({std::fabs(a.x), std::fabs(a.y), std::fabs(b.x), std::fabs(b.y), std::fabs(c.x),
                              std::fabs(c.y)});

@@ -17,11 +17,13 @@
 #include <cmath>
 #include <numbers>
 
+#include "algo/normalize.hpp"
 #include "algo/refine/cavity.hpp"
 #include "algo/refine_parallel.hpp"
 #include "algo/refine/refiner.hpp"
 #include "algo/refine/steiner.hpp"
 #include "deltamesh/progress.hpp"
+#include "mesh/canonical.hpp"
 
 namespace deltamesh::refinement {
 
@@ -56,6 +58,7 @@ void Refiner::run() {
 void Refiner::setup() {
   n_input_ = pts_.size();
   st_.input_vertices = n_input_;
+  set_unit();
   const double theta = std::clamp(opt_.min_angle_deg, 0.0, 60.0);
   shortest_first_ = opt_.order == RefineOrder::ShortestEdgeFirst;
   best_ = (opt_.steiner == SteinerRule::Best || opt_.steiner == SteinerRule::Grid) && theta > 0;
@@ -106,6 +109,19 @@ void Refiner::setup() {
   seg_of_.assign(n_input_, kNone);
   if (!m_.vertex_markers().empty()) m_.vertex_markers().resize(n_input_, 0);
   reserve_for_area_bounds();
+}
+
+// The input's unit length: the larger side of the bounding box of the
+// vertices (1 when that is not a positive finite length).
+void Refiner::set_unit() {
+  double lox = INFINITY, hix = -INFINITY, loy = INFINITY, hiy = -INFINITY;
+  for (const Point& p : pts_) {
+    lox = std::min(lox, p.x), hix = std::max(hix, p.x);
+    loy = std::min(loy, p.y), hiy = std::max(hiy, p.y);
+  }
+  const double u = std::max(hix - lox, hiy - loy);
+  unit_ = u > 0 && std::isfinite(u) ? u : 1.0;
+  key_scale_ = 1.0 / (unit_ * unit_);
 }
 
 // The angle criterion and what depends on it.
@@ -427,9 +443,30 @@ RefineStats refine_scanning(Mesh& mesh, const RefineOptions& options, unsigned s
 }  // namespace detail
 
 RefineStats refine(Mesh& mesh, const RefineOptions& options) {
+  if (detail::needs_frame(mesh.points())) {  // beyond the predicates' range: in an exact power-of-two frame
+    const detail::Frame f = detail::frame_for(mesh.points());
+    RefineOptions framed = options;
+    detail::scale_options(f, framed);
+    detail::scale_mesh(f, mesh);
+    struct Restore {  // also when refinement throws (a sizing callback)
+      const detail::Frame& f;
+      Mesh& m;
+      ~Restore() {
+        detail::restore(f, m);
+        if (m.trace()) detail::TraceAccess::set_frame(*m.trace(), 0);
+      }
+    } restore_on_exit{f, mesh};
+    if (mesh.trace()) detail::TraceAccess::set_frame(*mesh.trace(), f.k);
+    RefineStats stats = refine(mesh, framed);
+    detail::restore(f, stats);
+    return stats;
+  }
   if (std::optional<RefineStats> in_parts = detail::refine_in_parts(mesh, options)) return *in_parts;
   RefineStats stats;
   if (!mesh.compacted()) mesh.compact();
+  // Slots in an order of the triangulation's own (not of how it was built):
+  // the queue, the walks and the new slots follow it.
+  detail::canonical_triangle_order(mesh);
   stats.input_vertices = mesh.num_vertices();
   stats.min_angle_deg = options.min_angle_deg;
   if (mesh.num_triangles() == 0) return stats;

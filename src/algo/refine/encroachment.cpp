@@ -9,8 +9,9 @@
 //    subsegment subtends more than max(90°, 180° - 2·bound), i.e. one that
 //    would make a triangle below the bound with it.
 //  - Concentric shells (Shewchuk 2002): a subsegment with one input-vertex
-//    end is split at a power-of-two distance from that vertex, so that the
-//    splits of segments meeting at a small angle stay at equal radii.
+//    end is split at a power-of-two distance from that vertex (in the
+//    input's unit, Refiner::unit_), so that the splits of segments meeting
+//    at a small angle stay at equal radii.
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -44,22 +45,24 @@ double diametral_dot(const Point& a, const Point& b, const Point& p) {
 
 namespace {
 
-// The coarsest multiple of a power of two in the middle of [lo, hi], at
-// least 1 - 1/sqrt2 of the way from either end (for lo = 0, the concentric
-// shell). Splits of the segments around one apex then all fall on one
-// nested set of radii: vertices of neighbouring segments sit at equal radii
-// or as far apart as the subsegments they split. Midpoints of subsegments
-// of unequal segments drift into pairs of radii far closer than the local
-// feature size; the short edges between them make skinny triangles whose
-// splits, mirrored around the apex, cascade (hubs of many spokes of random
-// lengths ran to the budget).
-double grid_radius(double lo, double hi) {
+// The coarsest multiple of a power-of-two multiple of `unit` (the input's
+// unit length) in the middle of [lo, hi], at least 1 - 1/sqrt2 of the way
+// from either end (for lo = 0, the concentric shell). Splits of the segments
+// around one apex then all fall on one nested set of radii: vertices of
+// neighbouring segments sit at equal radii or as far apart as the
+// subsegments they split. Midpoints of subsegments of unequal segments drift
+// into pairs of radii far closer than the local feature size; the short
+// edges between them make skinny triangles whose splits, mirrored around the
+// apex, cascade (hubs of many spokes of random lengths ran to the budget).
+double grid_radius(double lo, double hi, double unit) {
   const double margin = (1.0 - 0.5 * std::numbers::sqrt2) * (hi - lo);
   const double l = lo + margin, h = hi - margin;
   int ex;
-  std::frexp(hi, &ex);  // hi < 2^ex
-  for (double step = std::ldexp(1.0, ex); step > 0; step *= 0.5) {
-    const double r = std::floor(h / step) * step;
+  std::frexp(hi / unit, &ex);  // hi < unit 2^ex, up to rounding
+  for (double step = std::ldexp(unit, ex + 1); step > 0; step *= 0.5) {
+    // A radius already on the grid (m step, rounded) must give m again:
+    // h / step is rounded too, so the floor allows a relative 2^-40.
+    const double r = std::floor(h / step * (1 + 0x1p-40)) * step;
     if (r >= l) return r;
   }
   return 0.5 * (lo + hi);
@@ -117,9 +120,13 @@ Point Refiner::segment_split_point(VertexId a, VertexId b) const {
     const Point& other = ain ? B : A;
     const double len = std::sqrt(dist2(apex, other));
     const double half = 0.5 * len;
+    // The shells' radii are unit_ times powers of two (a scale of the input
+    // scales them with it): the one nearest half, up to sqrt2.
     int ex;
-    std::frexp(half, &ex);  // half = f * 2^ex, f in [0.5, 1)
-    double shell = std::ldexp(1.0, ex - 1);  // <= half < 2 * shell
+    std::frexp(half / unit_, &ex);  // half / unit_ = f 2^ex, f in [0.5, 1)
+    double shell = std::ldexp(unit_, ex - 1);
+    while (shell > half) shell *= 0.5;  // shell <= half < 2 shell, whatever the rounding
+    while (shell > 0 && 2 * shell <= half) shell *= 2;
     if (half > shell * std::numbers::sqrt2) shell *= 2;
     const double f = shell / len;
     return within_predicate_range({apex.x + (other.x - apex.x) * f, apex.y + (other.y - apex.y) * f});
@@ -145,7 +152,7 @@ Point Refiner::segment_split_point(VertexId a, VertexId b) const {
         const Point& P = pts_[apex];
         const Point& O = pts_[segs_[s][0] == apex ? segs_[s][1] : segs_[s][0]];
         const double ra = std::sqrt(dist2(P, A)), rb = std::sqrt(dist2(P, B));
-        const double f = grid_radius(std::min(ra, rb), std::max(ra, rb)) / std::sqrt(dist2(P, O));
+        const double f = grid_radius(std::min(ra, rb), std::max(ra, rb), unit_) / std::sqrt(dist2(P, O));
         return within_predicate_range({P.x + (O.x - P.x) * f, P.y + (O.y - P.y) * f});
       }
     }

@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "algo/refine/refiner.hpp"
+#include "core/angles.hpp"
 #include "core/parallel.hpp"
 
 namespace deltamesh::refinement {
@@ -29,11 +30,10 @@ double Refiner::area_bound(TriId t, const Point& a, const Point& b, const Point&
 // Quality of triangle abc (counter-clockwise) under t's size bound.
 Eval Refiner::eval(TriId t, const Point& a, const Point& b, const Point& c) const {
   Eval ev;
-  const double l0 = dist2(a, b), l1 = dist2(b, c), l2 = dist2(c, a);
-  double lo = l0, o1 = l1, o2 = l2;
-  int s = 0;
-  if (l1 < lo) lo = l1, o1 = l2, o2 = l0, s = 1;
-  if (l2 < lo) lo = l2, o1 = l0, o2 = l1, s = 2;
+  const double l2s[3] = {dist2(a, b), dist2(b, c), dist2(c, a)};
+  const double l0 = l2s[0], l1 = l2s[1], l2 = l2s[2];
+  const int s = shortest_edge_index(l2s);
+  const double lo = l2s[s], o1 = l2s[(s + 1) % 3], o2 = l2s[(s + 2) % 3];
   // Twice the area, from an end P of the shortest edge PQ: (Q - P) and
   // (R - P) lose nothing to cancellation even where P and Q are far smaller
   // than R (a tiny feature seen from far away), which the differences from
@@ -65,7 +65,7 @@ void Refiner::consider(TriId t) {
   if (!ev.skinny && !ev.large) return;
   const QueueEntry q{t, tv_[3 * t], tv_[3 * t + 1], tv_[3 * t + 2]};
   if (ev.skinny)
-    queue_.push_skinny(shortest_first_ ? shortest_edge_key(ev.shortest2) : worst_quality_key(ev.sin2, sin2_bound_), q);
+    queue_.push_skinny(shortest_first_ ? shortest_edge_key(ev.shortest2 * key_scale_) : worst_quality_key(ev.sin2, sin2_bound_), q);
   else
     queue_.push_large(q);
 }

@@ -18,8 +18,9 @@ constexpr int kBuckets = 2048;
 
 // Bucket of a skinny triangle, shortest edge first (RefineOrder::
 // ShortestEdgeFirst): three buckets per octave of the squared shortest edge
-// (the exponent from frexp: no logarithm). Refining from small features
-// outwards grades better than worst first.
+// relative to the input's unit (Refiner::unit_; the exponent from frexp: no
+// logarithm). Refining from small features outwards grades better than
+// worst first.
 inline int shortest_edge_key(double shortest2) {
   int ex;
   const double f = std::frexp(shortest2, &ex);  // shortest2 = f 2^ex, f in [0.5, 1)

@@ -99,6 +99,7 @@ class Refiner {
   // (Methods declared inline are defined in the file that uses them, or in a
   // header it includes, so that the compiler may inline them into the loop.)
   void setup();
+  void set_unit();
   void set_bound(double theta);
   void reserve_for_area_bounds();
   void queue_encroached();
@@ -164,6 +165,7 @@ class Refiner {
   Point grid_point(TriId t, const Eval& ev, const Point& primary);
   bool score(TriId t, const Point& c, double min2, int& bad, double& radius2);
   bool gather_petal(TriId t, const Point& centre, double radius);
+  bool near_encroachment(const Point& a, const Point& b, const Point& c) const;
   bool score_local(const Point& c, double min2, int best_bad, double best_r2, int& bad, double& radius2);
   void prepare_grid();
 
@@ -275,6 +277,18 @@ class Refiner {
   bool best_ = false;             // SteinerRule::Best or Grid: choose among candidates
   bool sized_ = false;            // some size bound (area or edge length) applies
   double bound_rad_ = 0;          // the angle bound in radians
+  // A length fixed by the input (the larger side of its bounding box when
+  // refinement starts): the queue's buckets and the concentric shells are
+  // laid out in powers of two of it, not of the absolute unit, so that
+  // scaling the input by any factor (not only a power of two) scales the
+  // mesh with it (docs/robustness.md, "Any finite coordinates").
+  double unit_ = 1;
+  // The queue's keys are squared lengths over unit_^2. (Known limit: a
+  // ratio exactly at a bucket's bound, a power of two such as the halvings of
+  // a segment as long as the box, is put on either side by rounding. Moving
+  // the bounds off such ratios changed the order enough to make the hub
+  // tests, whose lengths are powers of two, cascade.)
+  double key_scale_ = 1;
   bool has_markers_ = false;
   double shell_cos_ = -2;       // input vertices whose smallest segment angle has a larger cosine get shells
   double small_cos2_ = 0.25;    // cos^2 of the largest input angle the small-angle rule treats as small
@@ -330,6 +344,7 @@ class Refiner {
     Point p[3];
     double e2[3];
     double cx, cy, r2;
+    double r2_in, r2_out;  // r2 shrunk and grown by kNear (steiner.cpp): between them, degenerate
     std::int32_t nb[3];
   };
   static constexpr std::int32_t kOut = -1, kWall = -2;

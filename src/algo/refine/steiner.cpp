@@ -20,6 +20,23 @@
 
 namespace deltamesh::refinement {
 
+namespace {
+
+// Candidate (bad, r2) beats the best so far: fewer skinny triangles left, or
+// as many and farther from every vertex by more than a relative 2^-24.
+// Symmetric candidates tie in exact arithmetic (equidistant from two
+// vertices); without the margin their rounding noise would pick one, and an
+// input scaled by a factor other than a power of two (rounded) would pick
+// another and refine differently from there on.
+constexpr double kTieMargin = 1.0 + 0x1p-24;
+// Relative distance within which a candidate counts as on a circle or a line.
+constexpr double kNear = 0x1p-26;
+bool beats(int bad, double r2, int best_bad, double best_r2) {
+  return bad < best_bad || (bad == best_bad && r2 > best_r2 * kTieMargin);
+}
+
+}  // namespace
+
 // Scores candidate c for bad triangle t: its cavity must hold t (c inside
 // t's circumcircle), be star-shaped from c, touch no segment c encroaches, and
 // keep c at least sqrt(min2) away from every vertex (no edge shorter than
@@ -90,7 +107,7 @@ Point Refiner::grid_point(TriId t, const Eval& ev, const Point& primary) {
       if (b.outer != kNone && eval(tri_of(b.outer)).large) return primary;
   const double tan_a = std::tan(bound_rad_);
   const auto consider = [&](double y, double s) {
-    if (y >= ymax || y <= 0) return;
+    if (y >= ymax * (1 - kNear) || y <= 0) return;
     // Angles at P and Q, then at the new vertex (sine rule), at least the bound.
     if (y < tan_a * (0.5 + s) || y < tan_a * (0.5 - s)) return;
     const double a2 = (0.5 + s) * (0.5 + s) + y * y, b2 = (0.5 - s) * (0.5 - s) + y * y;
@@ -99,7 +116,7 @@ Point Refiner::grid_point(TriId t, const Eval& ev, const Point& primary) {
     int bad;
     double r2;
     if (!score(t, c, min2, bad, r2)) return;
-    if (bad < best_bad || (bad == best_bad && r2 > best_r2)) {
+    if (beats(bad, r2, best_bad, best_r2)) {
       best_bad = bad, best_r2 = r2, best = c;
       best_y = y, best_s = s;
     }
@@ -147,6 +164,8 @@ bool Refiner::gather_petal(TriId t, const Point& centre, double radius) {
     pt.cy = A.y + uy;
     pt.r2 = ux * ux + uy * uy;
     if (!(d > 0) || !std::isfinite(pt.r2)) pt.cx = A.x, pt.cy = A.y, pt.r2 = INFINITY;
+    pt.r2_in = pt.r2 * (1 - kNear);
+    pt.r2_out = pt.r2 * (1 + kNear);
   };
   const auto meets = [&](const PetalTri& pt) {
     const double dx = pt.cx - centre.x, dy = pt.cy - centre.y;
@@ -189,6 +208,16 @@ bool Refiner::gather_petal(TriId t, const Point& centre, double radius) {
   return true;
 }
 
+// Whether c lies within a relative kNear of the boundary of segment ab's
+// encroachment region (its diametral circle, or lens): a degenerate place,
+// refused like the other near cases of score_local().
+bool Refiner::near_encroachment(const Point& a, const Point& b, const Point& c) const {
+  const double ax = a.x - c.x, ay = a.y - c.y, bx = b.x - c.x, by = b.y - c.y;
+  const double dot = ax * bx + ay * by, ab2 = (ax * ax + ay * ay) * (bx * bx + by * by);
+  if (dot * dot <= kNear * kNear * ab2) return true;
+  return lens_ && dot < 0 && std::fabs(dot * dot - lens_cos2_ * ab2) <= kNear * ab2;
+}
+
 // score() on the gathered neighbourhood: the cavity of c grown by its
 // triangles' circles, with the same tests on its boundary edges. Only a
 // point that beats (best_bad, best_r2) matters: scoring stops (false) as
@@ -197,13 +226,22 @@ bool Refiner::gather_petal(TriId t, const Point& centre, double radius) {
 // first petal triangle), which are on every cavity's boundary, so that a
 // point too close to them is dropped before its cavity is grown.
 bool Refiner::score_local(const Point& c, double min2, int best_bad, double best_r2, int& bad, double& radius2) {
+  // A candidate within a relative kNear of a circumcircle, or of the line
+  // of a cavity edge, is degenerate there: rounding (an input scaled by
+  // 10^k) decides its side, so it is refused rather than scored.
+  bool near = false;
+  const auto inside = [&](const PetalTri& pt) {
+    const double dx = c.x - pt.cx, dy = c.y - pt.cy;
+    const double d2 = dx * dx + dy * dy;
+    if (d2 < pt.r2_in) return true;
+    near = d2 <= pt.r2_out;
+    return false;
+  };
   const PetalTri& t0 = petal_[0];
-  {
-    const double dx = c.x - t0.cx, dy = c.y - t0.cy;
-    if (!(dx * dx + dy * dy < t0.r2)) return false;
-  }
+  if (!inside(t0)) return false;
+  const double beat_r2 = best_r2 * kTieMargin;
   radius2 = std::min({dist2(t0.p[0], c), dist2(t0.p[1], c), dist2(t0.p[2], c)});
-  if (radius2 < min2 || (best_bad == 0 && radius2 <= best_r2)) return false;
+  if (radius2 < min2 || (best_bad == 0 && radius2 <= beat_r2)) return false;
   if (++petal_stamp_ == 0) {
     petal_in_.fill(0);
     petal_stamp_ = 1;
@@ -220,25 +258,28 @@ bool Refiner::score_local(const Point& c, double min2, int best_bad, double best
       if (j >= 0) {
         const auto ju = static_cast<std::size_t>(j);
         if (petal_in_[ju] == stamp) continue;
-        const PetalTri& q = petal_[ju];
-        const double dx = c.x - q.cx, dy = c.y - q.cy;
-        if (dx * dx + dy * dy < q.r2) {
+        if (inside(petal_[ju])) {
           petal_in_[ju] = stamp;
           petal_stack_[top++] = j;
           continue;
         }
+        if (near) return false;
       }
       const Point& A = pt.p[k];
       const Point& B = pt.p[k == 2 ? 0 : k + 1];
       const double cross = (B.x - A.x) * (c.y - A.y) - (B.y - A.y) * (c.x - A.x);
       if (!(cross > 0)) return false;
-      if (j == kWall && encroaches(A, B, c)) return false;
+      if (j == kWall && (encroaches(A, B, c) || near_encroachment(A, B, c))) return false;
       const double la = dist2(A, c), lb = dist2(B, c), lab = pt.e2[k];
       radius2 = std::min({radius2, la, lb});
       if (radius2 < min2) return false;
       const double lo = std::min({la, lb, lab});
-      if (cross * cross * lo < sin2_bound_ * la * lb * lab) ++bad;
-      if (bad > best_bad || (bad == best_bad && radius2 <= best_r2)) return false;
+      if (cross * cross * lo < sin2_bound_ * la * lb * lab) {
+        // Skinny, and maybe c on the line of AB (then degenerate).
+        if (cross * cross <= kNear * kNear * lab * std::max(la, lb)) return false;
+        ++bad;
+      }
+      if (bad > best_bad || (bad == best_bad && radius2 <= beat_r2)) return false;
     }
   }
   return true;
@@ -318,22 +359,23 @@ Point Refiner::best_point(TriId t, const Eval& ev, const Point& primary) {
   Point best = primary;
   double best_y = ymax, best_s = 0;
   const auto within_petal = [&](double y, double s) { return in_petal(grid_tan_, sin2_bound_, y, s); };
+  const double y_top = ymax * (1 - kNear);  // up to the primary (not at it: degenerate)
   const auto try_point = [&](double y, double s) {
     const Point c{M.x + l * (s * ux + y * nx), M.y + l * (s * uy + y * ny)};
     int bad;
     double r2;
     if (!score_local(c, min2, best_bad, best_r2, bad, r2)) return false;
-    if (!(bad < best_bad || (bad == best_bad && r2 > best_r2))) return false;
+    if (!beats(bad, r2, best_bad, best_r2)) return false;
     best_bad = bad, best_r2 = r2, best = c;
     best_y = y, best_s = s;
     return true;
   };
   const auto consider = [&](double y, double s) {
-    if (y >= ymax || y <= 0 || !within_petal(y, s)) return false;
+    if (y >= y_top || y <= 0 || !within_petal(y, s)) return false;
     return try_point(y, s);
   };
   for (const auto& [y, s] : grid_cells_)
-    if (y < ymax) try_point(y, s);
+    if (y < y_top) try_point(y, s);
   // The pattern search of grid_point() on a lattice of its finest steps
   // around the grid's winner, each lattice point scored at most once (a
   // move's neighbourhood overlaps the last one's): steps of 4, 2 and 1 units
@@ -364,7 +406,7 @@ Point Refiner::best_point(TriId t, const Eval& ev, const Point& primary) {
   int bad;
   double r2;
   if (!score(t, best, min2, bad, r2)) return primary;
-  if (bad < primary_bad || (bad == primary_bad && r2 > primary_r2)) return best;
+  if (beats(bad, r2, primary_bad, primary_r2)) return best;
   return primary;
 }
 
