@@ -15,6 +15,8 @@
 #include <string>
 #include <vector>
 
+#include "support/cli_fixture.hpp"
+
 #ifndef DELTAMESH_CLI
 #error "DELTAMESH_CLI (path of the deltamesh binary) must be defined by the build"
 #endif
@@ -35,58 +37,19 @@ inline bool quick_tests() {
   return q != nullptr && *q != '\0' && *q != '0';
 }
 
-struct CliResult {
-  int code = -1;  // exit code; -1 when killed by a signal
-  std::string out;
-  std::string err;
-};
-
-inline std::string slurp(const std::filesystem::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
 // A fresh directory per test (removed afterwards unless the test failed).
-class TempDirTest : public ::testing::Test {
+class TempDirTest : public CliDirTest {
  protected:
-  void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = std::filesystem::temp_directory_path() /
-           ("deltamesh_adv_" + std::to_string(::getpid()) + "_" + info->test_suite_name() + "_" + info->name());
-    std::filesystem::remove_all(dir_);
-    std::filesystem::create_directories(dir_);
-  }
-  void TearDown() override {
-    if (!HasFailure()) {
-      std::error_code ec;
-      std::filesystem::permissions(dir_, std::filesystem::perms::owner_all, std::filesystem::perm_options::add, ec);
-      std::filesystem::remove_all(dir_, ec);
-    }
-  }
+  TempDirTest() : CliDirTest("deltamesh_adv") {}
 
   std::string path(const std::string& name) const { return (dir_ / name).string(); }
   std::string write(const std::string& name, const std::string& text) const {
-    std::ofstream(dir_ / name, std::ios::binary) << text;
+    CliDirTest::write(name, text);
     return path(name);
   }
-  bool exists(const std::string& name) const { return std::filesystem::exists(dir_ / name); }
 
   // Runs the CLI in the temporary directory; `args` is passed to the shell.
-  CliResult run(const std::string& args) const {
-    const auto out = dir_ / ".stdout", err = dir_ / ".stderr";
-    const std::string cmd = "cd '" + dir_.string() + "' && '" + std::string(DELTAMESH_CLI) + "' " + args + " > '" +
-                            out.string() + "' 2> '" + err.string() + "'";
-    const int status = std::system(cmd.c_str());
-    CliResult r;
-    r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    r.out = slurp(out);
-    r.err = slurp(err);
-    std::filesystem::remove(out);
-    std::filesystem::remove(err);
-    return r;
-  }
+  CliResult run(const std::string& args) const { return run_program(DELTAMESH_CLI, args); }
 
   // Names in a directory (default: the test's), sorted; the captured
   // stdout/stderr files are not listed.
@@ -99,8 +62,6 @@ class TempDirTest : public ::testing::Test {
     std::sort(names.begin(), names.end());
     return names;
   }
-
-  std::filesystem::path dir_;
 };
 
 }  // namespace deltamesh::test

@@ -23,8 +23,8 @@ namespace fs = std::filesystem;
 
 namespace {
 
-using deltamesh::test_support::slurp;
-using Result = deltamesh::test_support::CliResult;
+using deltamesh::test::slurp;
+using Result = deltamesh::test::CliResult;
 
 // Data lines of a Triangle file (comments and blank lines dropped), split
 // into tokens.
@@ -42,7 +42,7 @@ std::vector<std::vector<std::string>> table(const fs::path& p) {
   return rows;
 }
 
-class Cli : public deltamesh::test_support::CliDirTest {
+class Cli : public deltamesh::test::CliDirTest {
  protected:
   Cli() : CliDirTest("deltamesh_cli") {}
 

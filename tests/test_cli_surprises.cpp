@@ -28,8 +28,8 @@ namespace fs = std::filesystem;
 
 namespace {
 
-using deltamesh::test_support::slurp;
-using Result = deltamesh::test_support::CliResult;
+using deltamesh::test::slurp;
+using Result = deltamesh::test::CliResult;
 
 std::size_t occurrences(const std::string& text, const std::string& needle) {
   std::size_t n = 0;
@@ -37,7 +37,7 @@ std::size_t occurrences(const std::string& text, const std::string& needle) {
   return n;
 }
 
-class Surprises : public deltamesh::test_support::CliDirTest {
+class Surprises : public deltamesh::test::CliDirTest {
  protected:
   Surprises() : CliDirTest("deltamesh_surprises") {}
 

@@ -29,7 +29,7 @@
 
 using namespace deltamesh;
 namespace fs = std::filesystem;
-using deltamesh::test_support::grid_mesh;
+using deltamesh::test::grid_mesh;
 
 namespace {
 

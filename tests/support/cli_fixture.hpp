@@ -11,8 +11,10 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <system_error>
+#include <utility>
 
-namespace deltamesh::test_support {
+namespace deltamesh::test {
 
 struct CliResult {
   int code = -1;  // the exit code; -1 when the process did not exit normally
@@ -29,17 +31,22 @@ inline std::string slurp(const std::filesystem::path& p) {
 
 class CliDirTest : public ::testing::Test {
  protected:
-  // `prefix` names the directory (prefix_PID_TESTNAME under the temp dir).
+  // `prefix` names the directory (prefix_PID_SUITE_TEST under the temp dir).
   explicit CliDirTest(std::string prefix) : prefix_(std::move(prefix)) {}
 
   void SetUp() override {
     const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = std::filesystem::temp_directory_path() / (prefix_ + "_" + std::to_string(::getpid()) + "_" + info->name());
+    dir_ = std::filesystem::temp_directory_path() / (prefix_ + "_" + std::to_string(::getpid()) + "_" +
+                                                     info->test_suite_name() + "_" + info->name());
     std::filesystem::remove_all(dir_);
     std::filesystem::create_directories(dir_);
   }
+  // Tests may take permissions away (unwritable outputs): given back first.
   void TearDown() override {
-    if (!HasFailure()) std::filesystem::remove_all(dir_);
+    if (HasFailure()) return;
+    std::error_code ec;
+    std::filesystem::permissions(dir_, std::filesystem::perms::owner_all, std::filesystem::perm_options::add, ec);
+    std::filesystem::remove_all(dir_, ec);
   }
 
   void write(const std::string& name, const std::string& text) const {
@@ -69,4 +76,4 @@ class CliDirTest : public ::testing::Test {
   std::string prefix_;
 };
 
-}  // namespace deltamesh::test_support
+}  // namespace deltamesh::test

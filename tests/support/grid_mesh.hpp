@@ -5,7 +5,7 @@
 
 #include "deltamesh/mesh.hpp"
 
-namespace deltamesh::test_support {
+namespace deltamesh::test {
 
 // nx x ny squares of side h, each split into two counter-clockwise
 // triangles along its rising diagonal, twins linked, compacted. Vertex
@@ -36,4 +36,4 @@ inline Mesh grid_mesh(int nx, int ny, double h = 1.0) {
   return m;
 }
 
-}  // namespace deltamesh::test_support
+}  // namespace deltamesh::test
