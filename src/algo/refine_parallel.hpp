@@ -36,8 +36,10 @@ inline constexpr std::uint8_t kFrozenEdge = 2;
 //      the constrained Delaunay triangulation, and refine() the whole once
 //      more: it finishes what the frozen cuts left (triangles near them), so
 //      the result meets the same bounds as the sequential refinement.
-// refine() on one thread, with `scan_threads` for the passes over every
-// triangle (Refiner::set_scan_threads); for the last pass of refine_in_parts.
+// Refinement of the mesh as its slots stand, on one thread, with
+// `scan_threads` for the passes over every triangle (Refiner::
+// set_scan_threads): refine()'s sequential path (1, after putting the slots
+// in canonical order) and the stages of refine_in_parts (all threads).
 RefineStats refine_scanning(Mesh& mesh, const RefineOptions& options, unsigned scan_threads);
 
 std::optional<RefineStats> refine_in_parts(Mesh& mesh, const RefineOptions& options, unsigned parts = 0);

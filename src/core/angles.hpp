@@ -25,9 +25,6 @@ inline void scale_triangle(const Point& a, const Point& b, const Point& c, Point
   out[2] = {std::ldexp(c.x, -e), std::ldexp(c.y, -e)};
 }
 
-// Whether abc's products of differences may overflow or lose precision to
-// underflow (its edges are at least an ulp of its largest coordinate, about
-// 2^-53 of it, so a largest magnitude within 2^+-300 keeps them safe).
 // The local index i of a triangle's shortest edge (3t + i) from its squared
 // lengths, as refinement and the statistics both choose it: a later edge
 // wins only when shorter by more than a relative 2^-26, so the two equal
@@ -42,6 +39,9 @@ inline int shortest_edge_index(const double l2[3]) {
   return s;
 }
 
+// Whether abc's products of differences may overflow or lose precision to
+// underflow (its edges are at least an ulp of its largest coordinate, about
+// 2^-53 of it, so a largest magnitude within 2^+-300 keeps them safe).
 inline bool needs_scaling(const Point& a, const Point& b, const Point& c) {
   const double m = std::max({std::fabs(a.x), std::fabs(a.y), std::fabs(b.x), std::fabs(b.y), std::fabs(c.x),
                              std::fabs(c.y)});

@@ -436,6 +436,8 @@ RefineStats refine_scanning(Mesh& mesh, const RefineOptions& options, unsigned s
   Refiner r(mesh, options, stats);
   r.set_scan_threads(scan_threads);
   r.run();
+  // Mesh::add_triangle (used when triangles carry bounds or attributes)
+  // clears the compacted flag; the mesh has no dead or ghost slots.
   if (!mesh.compacted()) mesh.compact();
   return stats;
 }
@@ -462,19 +464,11 @@ RefineStats refine(Mesh& mesh, const RefineOptions& options) {
     return stats;
   }
   if (std::optional<RefineStats> in_parts = detail::refine_in_parts(mesh, options)) return *in_parts;
-  RefineStats stats;
   if (!mesh.compacted()) mesh.compact();
   // Slots in an order of the triangulation's own (not of how it was built):
   // the queue, the walks and the new slots follow it.
   detail::canonical_triangle_order(mesh);
-  stats.input_vertices = mesh.num_vertices();
-  stats.min_angle_deg = options.min_angle_deg;
-  if (mesh.num_triangles() == 0) return stats;
-  Refiner(mesh, options, stats).run();
-  // Mesh::add_triangle (used when triangles carry bounds or attributes)
-  // clears the compacted flag; the mesh has no dead or ghost slots.
-  if (!mesh.compacted()) mesh.compact();
-  return stats;
+  return detail::refine_scanning(mesh, options, 1);
 }
 
 std::string_view to_string(SteinerRule r) {

@@ -31,7 +31,6 @@ double Refiner::area_bound(TriId t, const Point& a, const Point& b, const Point&
 Eval Refiner::eval(TriId t, const Point& a, const Point& b, const Point& c) const {
   Eval ev;
   const double l2s[3] = {dist2(a, b), dist2(b, c), dist2(c, a)};
-  const double l0 = l2s[0], l1 = l2s[1], l2 = l2s[2];
   const int s = shortest_edge_index(l2s);
   const double lo = l2s[s], o1 = l2s[(s + 1) % 3], o2 = l2s[(s + 2) % 3];
   // Twice the area, from an end P of the shortest edge PQ: (Q - P) and
@@ -52,7 +51,7 @@ Eval Refiner::eval(TriId t, const Point& a, const Point& b, const Point& c) cons
   if (bound > 0 && 0.5 * cross > bound) ev.large = true;
   if (opt_.max_edge_at) {
     const double eb = opt_.max_edge_at((a.x + b.x + c.x) / 3.0, (a.y + b.y + c.y) / 3.0);
-    if (eb > 0 && std::max({l0, l1, l2}) > eb * eb) ev.large = true;
+    if (eb > 0 && std::max({l2s[0], l2s[1], l2s[2]}) > eb * eb) ev.large = true;
   }
   return ev;
 }
