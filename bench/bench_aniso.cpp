@@ -3,18 +3,23 @@
 // adaptation on the unit square (interpolate u at the vertices, recover
 // the Hessian, build the L2-optimal metric scaled to N with gradation 2,
 // adapt_to_metric) and report the interpolation error of the P1 interpolant
-// (L2 and L-infinity, sampled on a lattice of 28 points per triangle)
-// against the triangle count. "iso" uses the same pipeline with each
+// (L2 by a composite degree-5 rule, L-infinity at its points) against the triangle count. "iso" uses the same pipeline with each
 // Hessian replaced by its largest eigenvalue times I (the optimal isotropic
 // metric); "aniso" the Hessian itself. With --gmsh DIR, Gmsh's BAMG
 // (Mesh.Algorithm 7) meshes the square to the last aniso metric of each run
 // (a tensor view as background mesh) for comparison.
 //
 //   bench_aniso [--functions front,layer,cross] [--n 250,500,...] [--methods iso,aniso] [--iterations 5]
-//               [--svg DIR] [--svg-n N] [--gmsh DIR] [--gradation BETA]
+//               [--svg DIR] [--svg-n N] [--gmsh DIR] [--gradation BETA] [--quadrature K]
+//               [--trace 1] [--hessian exact]
 //
 // --svg: pictures of the meshes at N = --svg-n (default 2000). --gradation:
-// gradate_metric's beta for both methods (default 2).
+// gradate_metric's beta for both methods (default 2). --quadrature: K x K
+// sub-triangles per triangle for the error (default 4; the L2 error agrees
+// to 6 digits with K = 16 on the front at N = 250). Diagnostics: --trace 1
+// prints, per iteration, the metric's complexity before and after
+// gradation and the mesh's error on stderr; --hessian exact replaces the
+// recovered Hessian by central differences of the function itself.
 //
 // Output: CSV on stdout, one row per (function, method, N) after the last
 // iteration; every mesh of every iteration goes through check().
@@ -77,11 +82,27 @@ struct Error {
   double l2 = 0, linf = 0;
 };
 
-// Error of the P1 interpolant, sampled at the points of the barycentric
-// lattice with 6 subdivisions (28 points, vertices included).
+// Error of the P1 interpolant. L2: each triangle is cut into k x k similar
+// sub-triangles with Dunavant's 7-point degree-5 rule on each (the squared
+// error is smooth inside a sub-triangle once it is small against the
+// layer); L-infinity: the maximum over those points and the vertices of the
+// sub-triangles.
+int quadrature_k = 4;
+bool trace = false;
+bool exact_hessian = false;
+
 Error interpolation_error(const dm::Mesh& m, const Function& fn) {
   const std::vector<double> u = values(m, fn);
-  constexpr int k = 6;
+  const int k = quadrature_k;
+  // Dunavant (IJNME 21, 1985), degree 5: barycentric (a, b, b) and its
+  // permutations, weights summing to 1.
+  struct Rule {
+    double a, b, w;
+    int perms;
+  };
+  static constexpr Rule rule[] = {{1.0 / 3, 1.0 / 3, 0.225, 1},
+                                  {0.059715871789770, 0.470142064105115, 0.132394152788506, 3},
+                                  {0.797426985353087, 0.101286507323456, 0.125939180544827, 3}};
   Error e;
   double sq = 0;
   for (dm::TriId t = 0; t < m.num_triangle_slots(); ++t) {
@@ -89,18 +110,29 @@ Error interpolation_error(const dm::Mesh& m, const Function& fn) {
     const auto v = m.triangle(t);
     const dm::Point &a = m.point(v[0]), &b = m.point(v[1]), &c = m.point(v[2]);
     const double area = 0.5 * std::fabs((b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x));
+    // Error at barycentric (s, r) of the whole triangle (weights of b, c).
+    auto err = [&](double s, double r) {
+      const double x = a.x + s * (b.x - a.x) + r * (c.x - a.x), y = a.y + s * (b.y - a.y) + r * (c.y - a.y);
+      return fn.f(x, y) - ((1 - s - r) * u[v[0]] + s * u[v[1]] + r * u[v[2]]);
+    };
     double s = 0;
-    int count = 0;
+    auto sub = [&](double s0, double r0, double s1, double r1, double s2, double r2) {
+      for (const Rule& q : rule)
+        for (int p = 0; p < q.perms; ++p) {
+          const double w0 = p == 0 ? q.a : q.b, w1 = p == 1 ? q.a : q.b, w2 = p == 2 ? q.a : q.b;
+          const double d = err(w0 * s0 + w1 * s1 + w2 * s2, w0 * r0 + w1 * r1 + w2 * r2);
+          e.linf = std::max(e.linf, std::fabs(d));
+          s += q.w * d * d;
+        }
+    };
     for (int i = 0; i <= k; ++i)
       for (int j = 0; i + j <= k; ++j) {
-        const double wa = double(i) / k, wb = double(j) / k, wc = 1 - wa - wb;
-        const double x = wa * a.x + wb * b.x + wc * c.x, y = wa * a.y + wb * b.y + wc * c.y;
-        const double d = fn.f(x, y) - (wa * u[v[0]] + wb * u[v[1]] + wc * u[v[2]]);
-        e.linf = std::max(e.linf, std::fabs(d));
-        s += d * d;
-        ++count;
+        e.linf = std::max(e.linf, std::fabs(err(double(i) / k, double(j) / k)));
+        if (i + j < k) sub(double(i) / k, double(j) / k, double(i + 1) / k, double(j) / k, double(i) / k, double(j + 1) / k);
+        if (i + j < k - 1)
+          sub(double(i + 1) / k, double(j) / k, double(i + 1) / k, double(j + 1) / k, double(i) / k, double(j + 1) / k);
       }
-    sq += area * s / count;
+    sq += area * s / (k * k);
   }
   e.l2 = std::sqrt(sq);
   return e;
@@ -123,8 +155,31 @@ void validate(const dm::Mesh& m, const std::string& what) {
   }
 }
 
+double complexity(const dm::Mesh& m, const std::vector<dm::Metric>& met) {
+  double c = 0;
+  for (dm::TriId t = 0; t < m.num_triangle_slots(); ++t) {
+    if (!m.is_real(t)) continue;
+    const auto v = m.triangle(t);
+    const dm::Point &a = m.point(v[0]), &b = m.point(v[1]), &cc = m.point(v[2]);
+    const double area = 0.5 * std::fabs((b.x - a.x) * (cc.y - a.y) - (b.y - a.y) * (cc.x - a.x));
+    double d = 0;
+    for (int i = 0; i < 3; ++i) d += std::sqrt(met[v[i]].m11 * met[v[i]].m22 - met[v[i]].m12 * met[v[i]].m12) / 3;
+    c += area * d;
+  }
+  return c;
+}
+
 std::vector<dm::Metric> metric_for(const dm::Mesh& m, const Function& fn, bool aniso, double n, double gradation) {
   std::vector<dm::Metric> h = dm::recover_hessian(m, values(m, fn));
+  if (exact_hessian) {  // diagnostic: central differences of f
+    const double d = 1e-4;
+    for (dm::VertexId v = 0; v < m.num_vertices(); ++v) {
+      const double x = m.point(v).x, y = m.point(v).y, c = fn.f(x, y);
+      h[v].m11 = (fn.f(x + d, y) - 2 * c + fn.f(x - d, y)) / (d * d);
+      h[v].m22 = (fn.f(x, y + d) - 2 * c + fn.f(x, y - d)) / (d * d);
+      h[v].m12 = (fn.f(x + d, y + d) - fn.f(x + d, y - d) - fn.f(x - d, y + d) + fn.f(x - d, y - d)) / (4 * d * d);
+    }
+  }
   if (!aniso)
     for (dm::Metric& x : h) x = isotropic_part(x);
   dm::MetricScaling sc;
@@ -134,7 +189,9 @@ std::vector<dm::Metric> metric_for(const dm::Mesh& m, const Function& fn, bool a
   sc.h_max = 0.25;
   sc.max_aspect = 1e4;
   std::vector<dm::Metric> met = dm::metric_from_hessian(m, h, sc);
+  const double c0 = complexity(m, met);
   dm::gradate_metric(m, met, gradation);
+  if (trace) std::fprintf(stderr, "  complexity %.1f -> graded %.1f\n", c0, complexity(m, met));
   return met;
 }
 
@@ -250,6 +307,9 @@ int main(int argc, char** argv) {
     else if (a == "--methods") methods = split(v);
     else if (a == "--gmsh") gmsh_dir = v;
     else if (a == "--gradation") gradation = std::atof(v.c_str());
+    else if (a == "--quadrature") quadrature_k = std::atoi(v.c_str());
+    else if (a == "--trace") trace = v == "1";
+    else if (a == "--hessian") exact_hessian = v == "exact";
     else {
       std::fprintf(stderr, "bench_aniso: unknown option %s\n", a.c_str());
       return 2;
@@ -276,6 +336,25 @@ int main(int argc, char** argv) {
           seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
           validate(m, fn.name + " " + method + " N=" + std::to_string(int(n)) + " iteration " + std::to_string(it));
           fit = dm::metric_fit(m, field);
+          if (trace) {
+            // Metric lengths of the edges, in fifths of sqrt 2 ... 
+            int hist[8] = {0};
+            for (dm::TriId t = 0; t < m.num_triangle_slots(); ++t) {
+              if (!m.is_real(t)) continue;
+              const auto v = m.triangle(t);
+              for (int i = 0; i < 3; ++i) {
+                const dm::Point &p = m.point(v[i]), &q = m.point(v[(i + 1) % 3]);
+                const double l = dm::edge_length_in_metrics(p, q, field(p.x, p.y), field(q.x, q.y));
+                ++hist[std::min(7, int(l / 0.25))];
+              }
+            }
+            std::fprintf(stderr, "  half-edge lengths by 0.25:");
+            for (int h : hist) std::fprintf(stderr, " %d", h);
+            std::fprintf(stderr, "\n");
+            const Error ie = interpolation_error(m, fn);
+            std::fprintf(stderr, "%s %s N=%d it %d: %zu triangles, l2 %.4g, within %.3f\n", fn.name.c_str(), method,
+                         int(n), it, m.num_triangles(), ie.l2, fit.within);
+          }
         }
         const Error e = interpolation_error(m, fn);
         std::printf("%s,%s,%d,%zu,%zu,%.6g,%.6g,%.4f,%.4f,%.4f,%.4f,%.3f\n", fn.name.c_str(), method, int(n),
