@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <array>
 #include <bit>
+#include <cmath>
 #include <cstdint>
 #include <cstdlib>
 #include <filesystem>
@@ -16,6 +17,7 @@
 #include <map>
 #include <random>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -269,6 +271,52 @@ TEST(TraceReplay, CorpusFiles) {
     if (!fs::exists(path)) continue;
     run_and_replay("-pq25Q", input_of(read_poly(path.string())));
     run_and_replay("-pQ --cdt=lifting", input_of(read_poly(path.string())));
+  }
+}
+
+// A run beyond the predicates' range reports the user's coordinates through
+// a power-of-two frame; when it fails (here a size callback throws) the
+// observer must not stay in that frame for the next run it watches.
+TEST(TraceFrame, AFailedFramedRunLeavesTheObserverInTheUsersFrame) {
+  struct PointsSeen : TraceObserver {
+    std::vector<Point> points;
+    void on_event(const TraceEvent& ev) override {
+      if (ev.kind == TraceKind::Points) points.assign(ev.points.begin(), ev.points.end());
+    }
+  } seen;
+  const std::vector<Point> in{{0, 0}, {1, 0}, {1, 1}, {0, 1}, {0.25, 0.5}};
+  Pslg far;
+  for (const Point& p : in) far.points.push_back({std::ldexp(p.x, 300), std::ldexp(p.y, 300)});
+  far.segments = {{0, 1}, {1, 2}, {2, 3}, {3, 0}};
+  for (const bool refine_alone : {false, true}) {
+    SCOPED_TRACE(refine_alone ? "refine()" : "triangulate()");
+    TriangulateOptions opt;
+    opt.trace = &seen;
+    opt.refine.emplace();
+    opt.refine->max_area_at = [](double, double) -> double { throw std::runtime_error("no size here"); };
+    if (refine_alone) {
+      TriangulateOptions plain;
+      Mesh mesh = triangulate(far, plain);
+      mesh.set_trace(&seen);
+      const Mesh before = mesh;
+      EXPECT_THROW(refine(mesh, *opt.refine), std::runtime_error);
+      // The mesh came back in the user's frame as well.
+      EXPECT_TRUE(std::equal(before.points().begin(), before.points().end(), mesh.points().begin()));
+    } else {
+      EXPECT_THROW(triangulate(far, opt), std::runtime_error);
+    }
+
+    DelaunayOptions dopt;
+    dopt.trace = &seen;
+    const Mesh again = delaunay(in, dopt);
+    const CheckReport rep = check(again);
+    EXPECT_TRUE(rep.ok()) << rep.summary();
+    // Reported in insertion order: compare as sets.
+    const auto less = [](const Point& a, const Point& b) { return a.x < b.x || (a.x == b.x && a.y < b.y); };
+    std::vector<Point> want = in, got = seen.points;
+    std::sort(want.begin(), want.end(), less);
+    std::sort(got.begin(), got.end(), less);
+    EXPECT_EQ(got, want);
   }
 }
 

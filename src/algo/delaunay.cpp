@@ -141,9 +141,10 @@ Mesh delaunay(std::span<const Point> points, const DelaunayOptions& options, Del
     const detail::Frame f = detail::frame_for(points);
     std::vector<Point> framed(points.begin(), points.end());
     detail::scale_vertices(f, framed);
-    if (options.trace) detail::TraceAccess::set_frame(*options.trace, f.k);
-    Mesh mesh = delaunay(framed, options, stats);
-    if (options.trace) detail::TraceAccess::set_frame(*options.trace, 0);
+    Mesh mesh = [&] {
+      const detail::TraceFrameScope in_frame(options.trace, f.k);
+      return delaunay(framed, options, stats);
+    }();
     detail::restore(f, mesh);
     return mesh;
   }

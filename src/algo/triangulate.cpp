@@ -291,9 +291,10 @@ Mesh triangulate(const Pslg& pslg, const TriangulateOptions& options, Triangulat
     const detail::Frame f = detail::frame_for(pslg.points);
     TriangulateOptions framed = options;
     if (framed.refine) detail::scale_options(f, *framed.refine);
-    if (options.trace) detail::TraceAccess::set_frame(*options.trace, f.k);
-    Mesh mesh = triangulate(detail::scaled_pslg(f, pslg), framed, stats);
-    if (options.trace) detail::TraceAccess::set_frame(*options.trace, 0);
+    Mesh mesh = [&] {
+      const detail::TraceFrameScope in_frame(options.trace, f.k);
+      return triangulate(detail::scaled_pslg(f, pslg), framed, stats);
+    }();
     detail::restore(f, mesh);
     if (stats) detail::restore(f, stats->refine);
     return mesh;

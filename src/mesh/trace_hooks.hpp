@@ -79,4 +79,26 @@ inline void trace_carved(const Mesh& m, std::span<const TriId> slots) {
   TraceAccess::slots(*m.trace(), trace_event(TraceKind::Carve, TraceReason::None), m.triangle_vertices().data(), slots);
 }
 
+// While an algorithm runs in a power-of-two frame (algo/normalize.hpp), the
+// observer is told k so it can report the user's coordinates; it is told 0
+// again on every way out, a thrown exception included, so an observer that
+// outlives a failed run is not left scaled. No observer: nothing happens.
+class TraceFrameScope {
+ public:
+  TraceFrameScope(TraceObserver* o, int k) : o_(o) {
+    if (o_) TraceAccess::set_frame(*o_, k);
+  }
+  ~TraceFrameScope() { end(); }
+  TraceFrameScope(const TraceFrameScope&) = delete;
+  TraceFrameScope& operator=(const TraceFrameScope&) = delete;
+  // Ends the frame early (events after this are in the user's frame).
+  void end() {
+    if (o_) TraceAccess::set_frame(*o_, 0);
+    o_ = nullptr;
+  }
+
+ private:
+  TraceObserver* o_;
+};
+
 }  // namespace deltamesh::detail

@@ -344,7 +344,7 @@ RunResult run(const Plan& user_plan, RunInput input) {
   const Pslg user_seeds = seeds_of(input.pslg);
   normalize_input(frame, plan, input);
   const Pslg framed_seeds = seeds_of(input.pslg);
-  if (plan.trace) detail::TraceAccess::set_frame(*plan.trace, frame.k);
+  detail::TraceFrameScope in_frame(plan.trace, frame.k);
   RunResult res;
   Phases phases{res.phases};
   const std::vector<std::string> unused = unused_settings(plan);
@@ -366,7 +366,7 @@ RunResult run(const Plan& user_plan, RunInput input) {
     end.edge[0] = static_cast<VertexId>(res.mesh.num_triangles());
     detail::TraceAccess::plain(*plan.trace, end);
     res.mesh.set_trace(nullptr);  // the observer may not outlive the run
-    detail::TraceAccess::set_frame(*plan.trace, 0);
+    in_frame.end();
   }
   if (plan.check) check_result(plan, res, phases);
   // After -j and -C, which see the linear mesh.

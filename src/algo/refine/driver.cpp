@@ -453,12 +453,9 @@ RefineStats refine(Mesh& mesh, const RefineOptions& options) {
     struct Restore {  // also when refinement throws (a sizing callback)
       const detail::Frame& f;
       Mesh& m;
-      ~Restore() {
-        detail::restore(f, m);
-        if (m.trace()) detail::TraceAccess::set_frame(*m.trace(), 0);
-      }
+      ~Restore() { detail::restore(f, m); }
     } restore_on_exit{f, mesh};
-    if (mesh.trace()) detail::TraceAccess::set_frame(*mesh.trace(), f.k);
+    const detail::TraceFrameScope in_frame(mesh.trace(), f.k);
     RefineStats stats = refine(mesh, framed);
     detail::restore(f, stats);
     return stats;
