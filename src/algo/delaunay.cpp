@@ -127,6 +127,62 @@ class BulkBuilder {
 
 }  // namespace
 
+namespace detail {
+
+InsertionOrderDelaunay delaunay_in_insertion_order(std::span<const Point> points, TraceObserver* trace,
+                                                   DelaunayStats* stats, std::chrono::steady_clock::time_point& t0) {
+  const std::size_t n = points.size();
+  InsertionOrderDelaunay out;
+  // Build on a copy in insertion order, so the walk touches nearby memory.
+  Mesh& mesh = out.mesh;
+  mesh.set_trace(trace);
+  out.order = hilbert_order(points, &MeshEditor(mesh).points());
+  if (trace) {  // vertices in insertion order until the caller renumbers them
+    TraceAccess::phase(*trace, "delaunay");
+    TraceAccess::points(*trace, 0, mesh.points());
+  }
+
+  MeshEditor(mesh).out_edges().assign(n, kNone);
+  if (stats) stats->sort_seconds = seconds_since(t0);
+  t0 = Clock::now();
+
+  // First triangle: the first point, the next distinct one, the next one off their line.
+  const std::span<const Point> pts = mesh.points();
+  std::size_t i1 = 1;
+  while (i1 < n && pts[i1] == pts[0]) ++i1;
+  std::size_t i2 = i1 + 1;
+  while (i2 < n && orient2d(pts[0], pts[i1], pts[i2]) == 0) ++i2;
+  if (i2 >= n) {
+    const std::size_t distinct = i1 < n ? 2 : (n == 0 ? 0 : 1);
+    if (distinct < 2)
+      throw InputError("no triangle can be made: the input has " + std::to_string(n) +
+                       " points but fewer than 3 distinct ones");
+    throw InputError("no triangle can be made: all " + std::to_string(n) + " points are collinear");
+  }
+  mesh.reserve(n, 2 * n + 2);
+  if (orient2d(pts[0], pts[i1], pts[i2]) > 0)
+    make_first_triangle(mesh, 0, static_cast<VertexId>(i1), static_cast<VertexId>(i2));
+  else
+    make_first_triangle(mesh, 0, static_cast<VertexId>(i2), static_cast<VertexId>(i1));
+
+  {
+    // A closed triangulation of k vertices plus the vertex at infinity has
+    // 2k - 2 triangles; the builder's arrays are sized for that once.
+    BulkBuilder builder(mesh, 2 * n + 2);
+    TriId hint = 0;
+    for (std::size_t k = 1; k < n; ++k) {
+      if (k == i1 || k == i2) continue;
+      const VertexId v = static_cast<VertexId>(k);
+      const VertexId got = builder.insert(v, hint);
+      if (got != v) out.dups.emplace_back(v, got);
+    }
+  }
+  MeshEditor(mesh).recount();
+  return out;
+}
+
+}  // namespace detail
+
 Mesh delaunay(std::span<const Point> points, const DelaunayOptions& options, DelaunayStats* stats) {
   // Beyond the predicates' range: in an exact power-of-two frame. In range
   // this costs nothing: check_coordinates' own scan finds it out.
@@ -156,53 +212,10 @@ Mesh delaunay(std::span<const Point> points, const DelaunayOptions& options, Del
       if (std::optional<Mesh> m = detail::parallel_delaunay(points, parts, threads, stats)) return std::move(*m);
   }
   auto t0 = Clock::now();
-  // Build on a copy in insertion order, so the walk touches nearby memory.
-  Mesh mesh;
-  mesh.set_trace(options.trace);
-  std::vector<VertexId> order = detail::hilbert_order(points, &detail::MeshEditor(mesh).points());
-  if (options.trace) {  // vertices in insertion order until the renumbering below
-    detail::TraceAccess::phase(*options.trace, "delaunay");
-    detail::TraceAccess::points(*options.trace, 0, mesh.points());
-  }
-
-  detail::MeshEditor(mesh).out_edges().assign(n, kNone);
-  if (stats) stats->sort_seconds = seconds_since(t0);
-  t0 = Clock::now();
-
-  // First triangle: the first point, the next distinct one, the next one off their line.
-  const std::span<const Point> pts = mesh.points();
-  std::size_t i1 = 1;
-  while (i1 < n && pts[i1] == pts[0]) ++i1;
-  std::size_t i2 = i1 + 1;
-  while (i2 < n && orient2d(pts[0], pts[i1], pts[i2]) == 0) ++i2;
-  if (i2 >= n) {
-    const std::size_t distinct = i1 < n ? 2 : (n == 0 ? 0 : 1);
-    if (distinct < 2)
-      throw InputError("no triangle can be made: the input has " + std::to_string(n) +
-                       " points but fewer than 3 distinct ones");
-    throw InputError("no triangle can be made: all " + std::to_string(n) + " points are collinear");
-  }
-  mesh.reserve(n, 2 * n + 2);
-  if (orient2d(pts[0], pts[i1], pts[i2]) > 0)
-    detail::make_first_triangle(mesh, 0, static_cast<VertexId>(i1), static_cast<VertexId>(i2));
-  else
-    detail::make_first_triangle(mesh, 0, static_cast<VertexId>(i2), static_cast<VertexId>(i1));
-
-  // (duplicate, the vertex it met) in insertion order.
-  std::vector<std::pair<VertexId, VertexId>> dups;
-  {
-    // A closed triangulation of k vertices plus the vertex at infinity has
-    // 2k - 2 triangles; the builder's arrays are sized for that once.
-    BulkBuilder builder(mesh, 2 * n + 2);
-    TriId hint = 0;
-    for (std::size_t k = 1; k < n; ++k) {
-      if (k == i1 || k == i2) continue;
-      const VertexId v = static_cast<VertexId>(k);
-      const VertexId got = builder.insert(v, hint);
-      if (got != v) dups.emplace_back(v, got);
-    }
-  }
-  detail::MeshEditor(mesh).recount();
+  detail::InsertionOrderDelaunay built = detail::delaunay_in_insertion_order(points, options.trace, stats, t0);
+  Mesh& mesh = built.mesh;
+  const std::vector<VertexId>& order = built.order;
+  const std::vector<std::pair<VertexId, VertexId>>& dups = built.dups;
   if (stats) stats->insert_seconds = seconds_since(t0);
 
   if (options.keep_ghosts) {
@@ -255,7 +268,7 @@ Mesh delaunay(std::span<const Point> points, const DelaunayOptions& options, Del
         stats->duplicate_of[f] = kNone;
       }
   }
-  return mesh;
+  return std::move(built.mesh);
 }
 
 VertexId insert_delaunay_vertex(Mesh& mesh, const Point& p, TriId hint) {
