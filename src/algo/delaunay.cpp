@@ -130,7 +130,8 @@ class BulkBuilder {
 namespace detail {
 
 InsertionOrderDelaunay delaunay_in_insertion_order(std::span<const Point> points, TraceObserver* trace,
-                                                   DelaunayStats* stats, std::chrono::steady_clock::time_point& t0) {
+                                                   DelaunayStats* stats, std::chrono::steady_clock::time_point& t0,
+                                                   std::size_t reserve_triangles) {
   const std::size_t n = points.size();
   InsertionOrderDelaunay out;
   // Build on a copy in insertion order, so the walk touches nearby memory.
@@ -159,7 +160,7 @@ InsertionOrderDelaunay delaunay_in_insertion_order(std::span<const Point> points
                        " points but fewer than 3 distinct ones");
     throw InputError("no triangle can be made: all " + std::to_string(n) + " points are collinear");
   }
-  mesh.reserve(n, 2 * n + 2);
+  mesh.reserve(n, std::max(2 * n + 2, reserve_triangles));
   if (orient2d(pts[0], pts[i1], pts[i2]) > 0)
     make_first_triangle(mesh, 0, static_cast<VertexId>(i1), static_cast<VertexId>(i2));
   else

@@ -87,7 +87,7 @@ struct Slab {
 // Triangulates and classifies one slab, all in the slab's insertion
 // (BRIO/Hilbert) order: its triangles and their points are near each other
 // in memory there, while input numbering would scatter every point access.
-void triangulate_slab(std::span<const Point> points, Slab& s) {
+void triangulate_slab(std::span<const Point> points, Slab& s, std::size_t reserve_triangles) {
   std::vector<VertexId> ids;  // slab vertex (input order) -> input index
   std::vector<Point> pts;
   for (std::size_t i = 0; i < points.size(); ++i)
@@ -98,7 +98,9 @@ void triangulate_slab(std::span<const Point> points, Slab& s) {
   InsertionOrderDelaunay built;
   try {
     auto t0 = Clock::now();
-    built = delaunay_in_insertion_order(pts, nullptr, nullptr, t0);
+    // The first slab's arrays also take the other slabs' triangles later.
+    built = delaunay_in_insertion_order(pts, nullptr, nullptr, t0,
+                                        reserve_triangles ? reserve_triangles + 2 * pts.size() + 2 : 0);
   } catch (const InputError&) {
     s.failed = true;
     return;
@@ -144,19 +146,20 @@ void triangulate_slab(std::span<const Point> points, Slab& s) {
     if (s.in_gap[v]) s.gap_vertices.push_back(s.gid[v]);
 }
 
-// Writes slab j's kept triangles into the result at triangle `first`, their
-// vertices' out-edges for vertices no other part touches, and the seams'
-// half-edges; then frees the slab's mesh (on this thread, in parallel).
-void copy_slab(Slab& s, std::size_t first, VertexId* tv, HalfEdgeId* tw, HalfEdgeId* ve) {
-  const Mesh& m = s.mesh;
+// Writes a slab's kept triangles (slab arrays sv, sw) into the result at
+// triangle `first`, their vertices' out-edges for vertices no other part
+// touches, and the seams' half-edges; then frees the slab's mesh (on this
+// thread, in parallel). The first slab is moved in place (sv == tv,
+// first == 0): a kept triangle only moves to a lower slot, after it is read.
+void copy_slab(Slab& s, std::size_t first, const VertexId* sv, const HalfEdgeId* sw, VertexId* tv, HalfEdgeId* tw,
+               HalfEdgeId* ve) {
   const std::size_t base = 3 * first;
-  const std::span<const VertexId> mv = m.triangle_vertices();
   for (TriId t = 0; t < s.rank.size(); ++t) {
     if (s.rank[t] == kNone) continue;
     const std::size_t f = base + 3 * std::size_t{s.rank[t]};
     for (int i = 0; i < 3; ++i) {
-      const HalfEdgeId e = 3 * t + i, o = m.twin(e);
-      const VertexId v = mv[e];
+      const HalfEdgeId e = 3 * t + i, o = sw[e];
+      const VertexId v = sv[e];
       tv[f + i] = s.gid[v];
       // The last out-edge in slot order, as Mesh::compact() picks it.
       if (!s.in_gap[v]) ve[s.gid[v]] = static_cast<HalfEdgeId>(f + i);
@@ -199,7 +202,10 @@ std::optional<Mesh> parallel_delaunay(std::span<const Point> points, unsigned pa
     slabs[j].lo = j == 0 ? -std::numeric_limits<double>::infinity() : cuts[j - 1];
     slabs[j].hi = j == cuts.size() ? std::numeric_limits<double>::infinity() : cuts[j];
   }
-  run_tasks(slabs.size(), threads, [&](std::size_t j) { triangulate_slab(points, slabs[j]); });
+  // The first slab's triangle arrays become the result's (sized for all of
+  // it, by Euler's bound): no copy of that slab and no second allocation.
+  run_tasks(slabs.size(), threads,
+            [&](std::size_t j) { triangulate_slab(points, slabs[j], j == 0 ? 2 * n + 2 : 0); });
   for (const Slab& s : slabs)
     if (s.failed) return std::nullopt;
   if (stats) stats->sort_seconds = seconds_since(t0);
@@ -273,14 +279,20 @@ std::optional<Mesh> parallel_delaunay(std::span<const Point> points, unsigned pa
   }
 
   // The result: each slab's kept triangles in slot order, slab after slab,
-  // then the gap's triangles outside the kept regions.
+  // then the gap's triangles outside the kept regions. The first slab is
+  // compacted in place, so the others start after its slots; the hole it
+  // leaves (its dropped triangles and ghosts, a few per hull and seam edge)
+  // is filled from the end below.
   std::vector<std::size_t> offset(slabs.size() + 1, 0);
-  for (std::size_t j = 0; j < slabs.size(); ++j) offset[j + 1] = offset[j] + slabs[j].kept;
+  const std::size_t first_slots = slabs[0].rank.size();
+  for (std::size_t j = 0; j < slabs.size(); ++j) offset[j + 1] = (j == 0 ? first_slots : offset[j] + slabs[j].kept);
   std::vector<TriId> gap_rank(gap_slots, kNone);
-  std::size_t total = offset.back();
+  std::size_t gap_count = 0;
   for (TriId t = 0; t < gap_slots; ++t)
-    if (gap.is_real(t) && !covered[t]) gap_rank[t] = static_cast<TriId>(total++ - offset.back());
-  if (total >= kNone / 3) throw InputError("too many triangles: at most 1431655764 are supported");
+    if (gap.is_real(t) && !covered[t]) gap_rank[t] = static_cast<TriId>(gap_count++);
+  const std::size_t end = offset.back() + gap_count;  // slots in use, holes included
+  const std::size_t total = end - (first_slots - slabs[0].kept);
+  if (end >= kNone / 3) throw InputError("too many triangles: at most 1431655764 are supported");
 
   std::size_t duplicates = 0;
   for (const Slab& s : slabs) duplicates += s.duplicates;
@@ -291,10 +303,17 @@ std::optional<Mesh> parallel_delaunay(std::span<const Point> points, unsigned pa
   std::vector<VertexId>& tv = MeshEditor(out).triangle_vertices();
   std::vector<HalfEdgeId>& tw = MeshEditor(out).twins();
   std::vector<HalfEdgeId>& ve = MeshEditor(out).out_edges();
-  tv.resize(3 * total);
-  tw.resize(3 * total);
-  run_tasks(slabs.size(), threads,
-            [&](std::size_t j) { copy_slab(slabs[j], offset[j], tv.data(), tw.data(), ve.data()); });
+  tv = std::move(MeshEditor(slabs[0].mesh).triangle_vertices());
+  tw = std::move(MeshEditor(slabs[0].mesh).twins());
+  if (tv.size() != 3 * first_slots) throw InternalError("parallel_delaunay", "the first slab's arrays changed size");
+  tv.resize(3 * end);  // within the capacity reserved: the first slab's part is not copied
+  tw.resize(3 * end);
+  run_tasks(slabs.size(), threads, [&](std::size_t j) {
+    const Mesh& m = slabs[j].mesh;
+    const VertexId* sv = j == 0 ? tv.data() : m.triangle_vertices().data();
+    const HalfEdgeId* sw = j == 0 ? tw.data() : MeshEditor(slabs[j].mesh).twins().data();
+    copy_slab(slabs[j], offset[j], sv, sw, tv.data(), tw.data(), ve.data());
+  });
   // Half-edges left without a twin: seams, the gap's edges along them, and
   // the hull; paired by their vertices. The gap's vertices get their
   // out-edges here: from the seams, then from the gap's triangles.
@@ -328,6 +347,23 @@ std::optional<Mesh> parallel_delaunay(std::span<const Point> points, unsigned pa
       continue;
     }
     tw[h] = it->second;
+  }
+  // The first slab's hole, [kept, first_slots) as far as it lies below
+  // `total`, takes the triangles beyond `total`, in order (as
+  // Mesh::compact() fills its holes, over these few slots only).
+  {
+    std::size_t to = slabs[0].kept, from = std::max(first_slots, total);
+    for (; from < end; ++from, ++to)
+      for (int i = 0; i < 3; ++i) {
+        const std::size_t o = 3 * from + i, m = 3 * to + i;
+        tv[m] = tv[o];
+        tw[m] = tw[o];
+        if (tw[m] != kNone) tw[tw[m]] = static_cast<HalfEdgeId>(m);
+        if (ve[tv[m]] == o) ve[tv[m]] = static_cast<HalfEdgeId>(m);
+      }
+    if (to != std::min(first_slots, total)) throw InternalError("parallel_delaunay", "the first slab's hole is not filled");
+    tv.resize(3 * total);
+    tw.resize(3 * total);
   }
   // Euler: a triangulation of k distinct points with h hull edges has
   // 2k - 2 - h triangles; anything else is an overlap or a hole.

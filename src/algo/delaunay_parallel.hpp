@@ -15,13 +15,15 @@ namespace deltamesh::detail {
 // insertion order), and (duplicate, vertex it met) in that numbering.
 // Throws InputError when the points make no triangle. `t0` is the start of
 // the sort on entry (for stats->sort_seconds) and of the insertion on return.
+// The triangle arrays get capacity for `reserve_triangles` (untouched pages).
 struct InsertionOrderDelaunay {
   Mesh mesh;
   std::vector<VertexId> order;
   std::vector<std::pair<VertexId, VertexId>> dups;
 };
 InsertionOrderDelaunay delaunay_in_insertion_order(std::span<const Point> points, TraceObserver* trace,
-                                                   DelaunayStats* stats, std::chrono::steady_clock::time_point& t0);
+                                                   DelaunayStats* stats, std::chrono::steady_clock::time_point& t0,
+                                                   std::size_t reserve_triangles = 0);
 
 // Points below this per part are not worth a thread: delaunay() stays
 // sequential when n / threads is smaller.
