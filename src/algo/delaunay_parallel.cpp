@@ -144,6 +144,9 @@ void triangulate_slab(std::span<const Point> points, Slab& s, std::size_t reserv
   }
   for (VertexId v = 0; v < k; ++v)
     if (s.in_gap[v]) s.gap_vertices.push_back(s.gid[v]);
+  // Only the triangles are needed from here on: less memory at the merge.
+  MeshEditor(s.mesh).points() = std::vector<Point>{};
+  MeshEditor(s.mesh).out_edges() = std::vector<HalfEdgeId>{};
 }
 
 // Writes a slab's kept triangles (slab arrays sv, sw) into the result at
