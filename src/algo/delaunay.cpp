@@ -131,13 +131,16 @@ namespace detail {
 
 InsertionOrderDelaunay delaunay_in_insertion_order(std::span<const Point> points, TraceObserver* trace,
                                                    DelaunayStats* stats, std::chrono::steady_clock::time_point& t0,
-                                                   std::size_t reserve_triangles) {
+                                                   std::size_t reserve_triangles, std::size_t reserve_points,
+                                                   std::vector<Point>* release_after_sort) {
   const std::size_t n = points.size();
   InsertionOrderDelaunay out;
   // Build on a copy in insertion order, so the walk touches nearby memory.
   Mesh& mesh = out.mesh;
   mesh.set_trace(trace);
+  MeshEditor(mesh).points().reserve(std::max(n, reserve_points));
   out.order = hilbert_order(points, &MeshEditor(mesh).points());
+  if (release_after_sort) *release_after_sort = std::vector<Point>{};  // `points` is not read again
   if (trace) {  // vertices in insertion order until the caller renumbers them
     TraceAccess::phase(*trace, "delaunay");
     TraceAccess::points(*trace, 0, mesh.points());

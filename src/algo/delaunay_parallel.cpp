@@ -87,9 +87,13 @@ struct Slab {
 // Triangulates and classifies one slab, all in the slab's insertion
 // (BRIO/Hilbert) order: its triangles and their points are near each other
 // in memory there, while input numbering would scatter every point access.
-void triangulate_slab(std::span<const Point> points, Slab& s, std::size_t reserve_triangles) {
+void triangulate_slab(std::span<const Point> points, Slab& s, bool first) {
   std::vector<VertexId> ids;  // slab vertex (input order) -> input index
   std::vector<Point> pts;
+  std::size_t count = 0;  // sized once: no regrowth copies
+  for (const Point& p : points) count += p.x >= s.lo && p.x < s.hi;
+  ids.reserve(count);
+  pts.reserve(count);
   for (std::size_t i = 0; i < points.size(); ++i)
     if (points[i].x >= s.lo && points[i].x < s.hi) {
       ids.push_back(static_cast<VertexId>(i));
@@ -99,13 +103,14 @@ void triangulate_slab(std::span<const Point> points, Slab& s, std::size_t reserv
   try {
     auto t0 = Clock::now();
     // The first slab's arrays also take the other slabs' triangles later.
-    built = delaunay_in_insertion_order(pts, nullptr, nullptr, t0,
-                                        reserve_triangles ? reserve_triangles + 2 * pts.size() + 2 : 0);
+    // (Its triangles, by Euler's bound, and its hole; all the points.)
+    const std::size_t n = points.size();
+    built = delaunay_in_insertion_order(pts, nullptr, nullptr, t0, first ? 2 * n + 2 + 2 * pts.size() + 2 : 0,
+                                        first ? n : 0, &pts);
   } catch (const InputError&) {
     s.failed = true;
     return;
   }
-  pts = std::vector<Point>{};
   s.mesh = std::move(built.mesh);
   const Mesh& m = s.mesh;
   const std::size_t k = ids.size();
@@ -144,8 +149,9 @@ void triangulate_slab(std::span<const Point> points, Slab& s, std::size_t reserv
   }
   for (VertexId v = 0; v < k; ++v)
     if (s.in_gap[v]) s.gap_vertices.push_back(s.gid[v]);
-  // Only the triangles are needed from here on: less memory at the merge.
-  MeshEditor(s.mesh).points() = std::vector<Point>{};
+  // Only the triangles are needed from here on: less memory at the merge
+  // (the first slab's point array is reused for the result's points).
+  if (!first) MeshEditor(s.mesh).points() = std::vector<Point>{};
   MeshEditor(s.mesh).out_edges() = std::vector<HalfEdgeId>{};
 }
 
@@ -208,7 +214,7 @@ std::optional<Mesh> parallel_delaunay(std::span<const Point> points, unsigned pa
   // The first slab's triangle arrays become the result's (sized for all of
   // it, by Euler's bound): no copy of that slab and no second allocation.
   run_tasks(slabs.size(), threads,
-            [&](std::size_t j) { triangulate_slab(points, slabs[j], j == 0 ? 2 * n + 2 : 0); });
+            [&](std::size_t j) { triangulate_slab(points, slabs[j], j == 0); });
   for (const Slab& s : slabs)
     if (s.failed) return std::nullopt;
   if (stats) stats->sort_seconds = seconds_since(t0);
@@ -300,6 +306,7 @@ std::optional<Mesh> parallel_delaunay(std::span<const Point> points, unsigned pa
   std::size_t duplicates = 0;
   for (const Slab& s : slabs) duplicates += s.duplicates;
   Mesh out;
+  MeshEditor(out).points() = std::move(MeshEditor(slabs[0].mesh).points());  // capacity for all
   MeshEditor(out).points().assign(points.begin(), points.end());
   // Duplicates keep kNone; every other vertex is given an out-edge below.
   MeshEditor(out).out_edges().assign(n, kNone);

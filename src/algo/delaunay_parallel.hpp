@@ -15,7 +15,9 @@ namespace deltamesh::detail {
 // insertion order), and (duplicate, vertex it met) in that numbering.
 // Throws InputError when the points make no triangle. `t0` is the start of
 // the sort on entry (for stats->sort_seconds) and of the insertion on return.
-// The triangle arrays get capacity for `reserve_triangles` (untouched pages).
+// The triangle arrays get capacity for `reserve_triangles`, the points for
+// `reserve_points` (untouched pages until used). `release_after_sort`, when
+// given, is the vector `points` views: it is freed once they are sorted.
 struct InsertionOrderDelaunay {
   Mesh mesh;
   std::vector<VertexId> order;
@@ -23,7 +25,8 @@ struct InsertionOrderDelaunay {
 };
 InsertionOrderDelaunay delaunay_in_insertion_order(std::span<const Point> points, TraceObserver* trace,
                                                    DelaunayStats* stats, std::chrono::steady_clock::time_point& t0,
-                                                   std::size_t reserve_triangles = 0);
+                                                   std::size_t reserve_triangles = 0, std::size_t reserve_points = 0,
+                                                   std::vector<Point>* release_after_sort = nullptr);
 
 // Points below this per part are not worth a thread: delaunay() stays
 // sequential when n / threads is smaller.
