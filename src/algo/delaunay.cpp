@@ -33,21 +33,25 @@ double seconds_since(Clock::time_point t0) {
 }
 
 // The bulk builder: split + Lawson flips (mesh/legalize.hpp) on raw arrays
-// sized once, without per-vertex out-edges (compact() rebuilds them), because
-// this loop is where a 10^6-point triangulation spends its time.
+// allocated once, without per-vertex out-edges (compact() rebuilds them),
+// because this loop is where a 10^6-point triangulation spends its time.
+// The arrays grow within their capacity as triangles are added (no
+// reallocation, so the raw pointers stay valid): resizing them whole at the
+// start would zero-fill every page once before the build writes it again.
 class BulkBuilder {
  public:
   BulkBuilder(Mesh& mesh, std::size_t max_triangles)
-      : mesh_(mesh), used_(detail::MeshEditor(mesh).triangle_vertices().size()), p_(mesh.points().data()), trace_(mesh.trace()) {
-    detail::MeshEditor(mesh).triangle_vertices().resize(3 * max_triangles);
-    detail::MeshEditor(mesh).twins().resize(3 * max_triangles);
-    v_ = detail::MeshEditor(mesh).triangle_vertices().data();
-    tw_ = detail::MeshEditor(mesh).twins().data();
+      : used_(detail::MeshEditor(mesh).triangle_vertices().size()), p_(mesh.points().data()), trace_(mesh.trace()),
+        tv_vec_(detail::MeshEditor(mesh).triangle_vertices()), tw_vec_(detail::MeshEditor(mesh).twins()) {
+    tv_vec_.reserve(3 * max_triangles);
+    tw_vec_.reserve(3 * max_triangles);
+    v_ = tv_vec_.data();
+    tw_ = tw_vec_.data();
     stack_.reserve(64);
   }
   ~BulkBuilder() {
-    detail::MeshEditor(mesh_).triangle_vertices().resize(used_);
-    detail::MeshEditor(mesh_).twins().resize(used_);
+    tv_vec_.resize(used_);
+    tw_vec_.resize(used_);
   }
   BulkBuilder(const BulkBuilder&) = delete;
   BulkBuilder& operator=(const BulkBuilder&) = delete;
@@ -90,9 +94,21 @@ class BulkBuilder {
 
   // Triangle t = (a, b, c) becomes (a, b, v) + new (b, c, v) + new (c, a, v);
   // the edges opposite v go on the stack.
+  // Two more triangle slots, within the capacity reserved. The arrays grow
+  // by chunks that stay in cache until the build writes them.
+  void grow() {
+    used_ += 6;
+    if (used_ <= tv_vec_.size()) [[likely]]
+      return;
+    if (used_ > tv_vec_.capacity()) throw InternalError("delaunay", "more triangles than Euler's bound allows");
+    const std::size_t size = std::min(tv_vec_.capacity(), used_ + 3 * 4096);
+    tv_vec_.resize(size);
+    tw_vec_.resize(size);
+  }
+
   void split(TriId t, VertexId v) {
     const TriId t1 = static_cast<TriId>(used_ / 3);
-    used_ += 6;
+    grow();
     detail::split_triangle_arrays<detail::kCarryTopologyOnly>(arrays(), t, v, t1, t1 + 1);
     if (trace_) [[unlikely]]
       detail::TraceAccess::slots(*trace_, detail::trace_insert(v, p_[v]), v_, {t, t1, t1 + 1});
@@ -106,7 +122,7 @@ class BulkBuilder {
   void split_edge(HalfEdgeId e, VertexId v) {
     const HalfEdgeId f = tw_[e];
     const TriId t3 = static_cast<TriId>(used_ / 3);
-    used_ += 6;
+    grow();
     const HalfEdgeId g0 = detail::split_edge_arrays<detail::kCarryTopologyOnly>(arrays(), e, v, t3, t3 + 1);
     if (trace_) [[unlikely]]
       detail::TraceAccess::slots(*trace_, detail::trace_insert(v, p_[v]), v_, {tri_of(e), tri_of(f), t3, t3 + 1});
@@ -116,12 +132,13 @@ class BulkBuilder {
     push(g0 + 4);
   }
 
-  Mesh& mesh_;
   std::size_t used_;  // half-edge slots in use
   VertexId* v_ = nullptr;
   HalfEdgeId* tw_ = nullptr;
   const Point* p_;
   TraceObserver* trace_;
+  std::vector<VertexId>& tv_vec_;
+  std::vector<HalfEdgeId>& tw_vec_;
   std::vector<HalfEdgeId> stack_;
 };
 
