@@ -33,21 +33,25 @@ double seconds_since(Clock::time_point t0) {
 }
 
 // The bulk builder: split + Lawson flips (mesh/legalize.hpp) on raw arrays
-// sized once, without per-vertex out-edges (compact() rebuilds them), because
-// this loop is where a 10^6-point triangulation spends its time.
+// allocated once, without per-vertex out-edges (compact() rebuilds them),
+// because this loop is where a 10^6-point triangulation spends its time.
+// The arrays grow within their capacity as triangles are added (no
+// reallocation, so the raw pointers stay valid): resizing them whole at the
+// start would zero-fill every page once before the build writes it again.
 class BulkBuilder {
  public:
   BulkBuilder(Mesh& mesh, std::size_t max_triangles)
-      : mesh_(mesh), used_(detail::MeshEditor(mesh).triangle_vertices().size()), p_(mesh.points().data()), trace_(mesh.trace()) {
-    detail::MeshEditor(mesh).triangle_vertices().resize(3 * max_triangles);
-    detail::MeshEditor(mesh).twins().resize(3 * max_triangles);
-    v_ = detail::MeshEditor(mesh).triangle_vertices().data();
-    tw_ = detail::MeshEditor(mesh).twins().data();
+      : used_(detail::MeshEditor(mesh).triangle_vertices().size()), p_(mesh.points().data()), trace_(mesh.trace()),
+        tv_vec_(detail::MeshEditor(mesh).triangle_vertices()), tw_vec_(detail::MeshEditor(mesh).twins()) {
+    tv_vec_.reserve(3 * max_triangles);
+    tw_vec_.reserve(3 * max_triangles);
+    v_ = tv_vec_.data();
+    tw_ = tw_vec_.data();
     stack_.reserve(64);
   }
   ~BulkBuilder() {
-    detail::MeshEditor(mesh_).triangle_vertices().resize(used_);
-    detail::MeshEditor(mesh_).twins().resize(used_);
+    tv_vec_.resize(used_);
+    tw_vec_.resize(used_);
   }
   BulkBuilder(const BulkBuilder&) = delete;
   BulkBuilder& operator=(const BulkBuilder&) = delete;
@@ -90,9 +94,21 @@ class BulkBuilder {
 
   // Triangle t = (a, b, c) becomes (a, b, v) + new (b, c, v) + new (c, a, v);
   // the edges opposite v go on the stack.
+  // Two more triangle slots, within the capacity reserved. The arrays grow
+  // by chunks that stay in cache until the build writes them.
+  void grow() {
+    used_ += 6;
+    if (used_ <= tv_vec_.size()) [[likely]]
+      return;
+    if (used_ > tv_vec_.capacity()) throw InternalError("delaunay", "more triangles than Euler's bound allows");
+    const std::size_t size = std::min(tv_vec_.capacity(), used_ + 3 * 4096);
+    tv_vec_.resize(size);
+    tw_vec_.resize(size);
+  }
+
   void split(TriId t, VertexId v) {
     const TriId t1 = static_cast<TriId>(used_ / 3);
-    used_ += 6;
+    grow();
     detail::split_triangle_arrays<detail::kCarryTopologyOnly>(arrays(), t, v, t1, t1 + 1);
     if (trace_) [[unlikely]]
       detail::TraceAccess::slots(*trace_, detail::trace_insert(v, p_[v]), v_, {t, t1, t1 + 1});
@@ -106,7 +122,7 @@ class BulkBuilder {
   void split_edge(HalfEdgeId e, VertexId v) {
     const HalfEdgeId f = tw_[e];
     const TriId t3 = static_cast<TriId>(used_ / 3);
-    used_ += 6;
+    grow();
     const HalfEdgeId g0 = detail::split_edge_arrays<detail::kCarryTopologyOnly>(arrays(), e, v, t3, t3 + 1);
     if (trace_) [[unlikely]]
       detail::TraceAccess::slots(*trace_, detail::trace_insert(v, p_[v]), v_, {tri_of(e), tri_of(f), t3, t3 + 1});
@@ -116,16 +132,77 @@ class BulkBuilder {
     push(g0 + 4);
   }
 
-  Mesh& mesh_;
   std::size_t used_;  // half-edge slots in use
   VertexId* v_ = nullptr;
   HalfEdgeId* tw_ = nullptr;
   const Point* p_;
   TraceObserver* trace_;
+  std::vector<VertexId>& tv_vec_;
+  std::vector<HalfEdgeId>& tw_vec_;
   std::vector<HalfEdgeId> stack_;
 };
 
 }  // namespace
+
+namespace detail {
+
+InsertionOrderDelaunay delaunay_in_insertion_order(std::span<const Point> points, TraceObserver* trace,
+                                                   DelaunayStats* stats, std::chrono::steady_clock::time_point& t0,
+                                                   std::size_t reserve_triangles, std::size_t reserve_points,
+                                                   std::vector<Point>* release_after_sort) {
+  const std::size_t n = points.size();
+  InsertionOrderDelaunay out;
+  // Build on a copy in insertion order, so the walk touches nearby memory.
+  Mesh& mesh = out.mesh;
+  mesh.set_trace(trace);
+  MeshEditor(mesh).points().reserve(std::max(n, reserve_points));
+  out.order = hilbert_order(points, &MeshEditor(mesh).points());
+  if (release_after_sort) *release_after_sort = std::vector<Point>{};  // `points` is not read again
+  if (trace) {  // vertices in insertion order until the caller renumbers them
+    TraceAccess::phase(*trace, "delaunay");
+    TraceAccess::points(*trace, 0, mesh.points());
+  }
+
+  MeshEditor(mesh).out_edges().assign(n, kNone);
+  if (stats) stats->sort_seconds = seconds_since(t0);
+  t0 = Clock::now();
+
+  // First triangle: the first point, the next distinct one, the next one off their line.
+  const std::span<const Point> pts = mesh.points();
+  std::size_t i1 = 1;
+  while (i1 < n && pts[i1] == pts[0]) ++i1;
+  std::size_t i2 = i1 + 1;
+  while (i2 < n && orient2d(pts[0], pts[i1], pts[i2]) == 0) ++i2;
+  if (i2 >= n) {
+    const std::size_t distinct = i1 < n ? 2 : (n == 0 ? 0 : 1);
+    if (distinct < 2)
+      throw InputError("no triangle can be made: the input has " + std::to_string(n) +
+                       " points but fewer than 3 distinct ones");
+    throw InputError("no triangle can be made: all " + std::to_string(n) + " points are collinear");
+  }
+  mesh.reserve(n, std::max(2 * n + 2, reserve_triangles));
+  if (orient2d(pts[0], pts[i1], pts[i2]) > 0)
+    make_first_triangle(mesh, 0, static_cast<VertexId>(i1), static_cast<VertexId>(i2));
+  else
+    make_first_triangle(mesh, 0, static_cast<VertexId>(i2), static_cast<VertexId>(i1));
+
+  {
+    // A closed triangulation of k vertices plus the vertex at infinity has
+    // 2k - 2 triangles; the builder's arrays are sized for that once.
+    BulkBuilder builder(mesh, 2 * n + 2);
+    TriId hint = 0;
+    for (std::size_t k = 1; k < n; ++k) {
+      if (k == i1 || k == i2) continue;
+      const VertexId v = static_cast<VertexId>(k);
+      const VertexId got = builder.insert(v, hint);
+      if (got != v) out.dups.emplace_back(v, got);
+    }
+  }
+  MeshEditor(mesh).recount();
+  return out;
+}
+
+}  // namespace detail
 
 Mesh delaunay(std::span<const Point> points, const DelaunayOptions& options, DelaunayStats* stats) {
   // Beyond the predicates' range: in an exact power-of-two frame. In range
@@ -157,53 +234,10 @@ Mesh delaunay(std::span<const Point> points, const DelaunayOptions& options, Del
       if (std::optional<Mesh> m = detail::parallel_delaunay(points, parts, threads, stats)) return std::move(*m);
   }
   auto t0 = Clock::now();
-  // Build on a copy in insertion order, so the walk touches nearby memory.
-  Mesh mesh;
-  mesh.set_trace(options.trace);
-  std::vector<VertexId> order = detail::hilbert_order(points, &detail::MeshEditor(mesh).points());
-  if (options.trace) {  // vertices in insertion order until the renumbering below
-    detail::TraceAccess::phase(*options.trace, "delaunay");
-    detail::TraceAccess::points(*options.trace, 0, mesh.points());
-  }
-
-  detail::MeshEditor(mesh).out_edges().assign(n, kNone);
-  if (stats) stats->sort_seconds = seconds_since(t0);
-  t0 = Clock::now();
-
-  // First triangle: the first point, the next distinct one, the next one off their line.
-  const std::span<const Point> pts = mesh.points();
-  std::size_t i1 = 1;
-  while (i1 < n && pts[i1] == pts[0]) ++i1;
-  std::size_t i2 = i1 + 1;
-  while (i2 < n && orient2d(pts[0], pts[i1], pts[i2]) == 0) ++i2;
-  if (i2 >= n) {
-    const std::size_t distinct = i1 < n ? 2 : (n == 0 ? 0 : 1);
-    if (distinct < 2)
-      throw InputError("no triangle can be made: the input has " + std::to_string(n) +
-                       " points but fewer than 3 distinct ones");
-    throw InputError("no triangle can be made: all " + std::to_string(n) + " points are collinear");
-  }
-  mesh.reserve(n, 2 * n + 2);
-  if (orient2d(pts[0], pts[i1], pts[i2]) > 0)
-    detail::make_first_triangle(mesh, 0, static_cast<VertexId>(i1), static_cast<VertexId>(i2));
-  else
-    detail::make_first_triangle(mesh, 0, static_cast<VertexId>(i2), static_cast<VertexId>(i1));
-
-  // (duplicate, the vertex it met) in insertion order.
-  std::vector<std::pair<VertexId, VertexId>> dups;
-  {
-    // A closed triangulation of k vertices plus the vertex at infinity has
-    // 2k - 2 triangles; the builder's arrays are sized for that once.
-    BulkBuilder builder(mesh, 2 * n + 2);
-    TriId hint = 0;
-    for (std::size_t k = 1; k < n; ++k) {
-      if (k == i1 || k == i2) continue;
-      const VertexId v = static_cast<VertexId>(k);
-      const VertexId got = builder.insert(v, hint);
-      if (got != v) dups.emplace_back(v, got);
-    }
-  }
-  detail::MeshEditor(mesh).recount();
+  detail::InsertionOrderDelaunay built = detail::delaunay_in_insertion_order(points, options.trace, stats, t0);
+  Mesh& mesh = built.mesh;
+  const std::vector<VertexId>& order = built.order;
+  const std::vector<std::pair<VertexId, VertexId>>& dups = built.dups;
   if (stats) stats->insert_seconds = seconds_since(t0);
 
   if (options.keep_ghosts) {
@@ -256,7 +290,7 @@ Mesh delaunay(std::span<const Point> points, const DelaunayOptions& options, Del
         stats->duplicate_of[f] = kNone;
       }
   }
-  return mesh;
+  return std::move(built.mesh);
 }
 
 VertexId insert_delaunay_vertex(Mesh& mesh, const Point& p, TriId hint) {

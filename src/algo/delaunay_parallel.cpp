@@ -71,33 +71,62 @@ bool disc_inside_slab(const Point& a, const Point& b, const Point& c, double lo,
 // One slab: its points, its triangulation and what the merge needs of it.
 struct Slab {
   double lo = 0, hi = 0;       // lo <= x < hi
-  std::vector<VertexId> ids;   // slab vertex -> input index (input order)
-  Mesh mesh;                   // closed (ghosts), slab numbering
-  DelaunayStats stats;
+  Mesh mesh;                   // closed (ghosts), in the slab's insertion order
+  std::vector<VertexId> gid;   // slab vertex -> input index (of the first copy, for duplicates)
+  std::size_t duplicates = 0;
+  std::vector<std::pair<VertexId, VertexId>> dup_of;  // (input index of a copy, the one kept)
   std::vector<TriId> rank;     // per slot: index among the kept triangles, or kNone
   std::size_t kept = 0;
-  std::vector<HalfEdgeId> seams;  // half-edges of kept triangles whose other side is dropped
-  std::vector<VertexId> gap_vertices;  // input indices of the vertices of dropped triangles and seams
+  std::vector<HalfEdgeId> seams;       // half-edges of kept triangles whose other side is dropped
+  std::vector<std::uint8_t> in_gap;    // per slab vertex: in a dropped triangle or on a seam
+  std::vector<VertexId> gap_vertices;  // input indices of those vertices
+  std::vector<HalfEdgeId> open;        // the seams as half-edges of the result
   bool failed = false;         // no triangle: the decomposition does not apply
 };
 
-void triangulate_slab(std::span<const Point> points, Slab& s) {
+// Triangulates and classifies one slab, all in the slab's insertion
+// (BRIO/Hilbert) order: its triangles and their points are near each other
+// in memory there, while input numbering would scatter every point access.
+void triangulate_slab(std::span<const Point> points, Slab& s, bool first) {
+  std::vector<VertexId> ids;  // slab vertex (input order) -> input index
   std::vector<Point> pts;
+  std::size_t count = 0;  // sized once: no regrowth copies
+  for (const Point& p : points) count += p.x >= s.lo && p.x < s.hi;
+  ids.reserve(count);
+  pts.reserve(count);
   for (std::size_t i = 0; i < points.size(); ++i)
     if (points[i].x >= s.lo && points[i].x < s.hi) {
-      s.ids.push_back(static_cast<VertexId>(i));
+      ids.push_back(static_cast<VertexId>(i));
       pts.push_back(points[i]);
     }
-  DelaunayOptions o;
-  o.keep_ghosts = true;
-  o.threads = 1;
+  InsertionOrderDelaunay built;
   try {
-    s.mesh = delaunay(pts, o, &s.stats);
+    auto t0 = Clock::now();
+    // The first slab's arrays also take the other slabs' triangles later.
+    // (Its triangles, by Euler's bound, and its hole; all the points.)
+    const std::size_t n = points.size();
+    built = delaunay_in_insertion_order(pts, nullptr, nullptr, t0, first ? 2 * n + 2 + 2 * pts.size() + 2 : 0,
+                                        first ? n : 0, &pts);
   } catch (const InputError&) {
     s.failed = true;
     return;
   }
+  s.mesh = std::move(built.mesh);
   const Mesh& m = s.mesh;
+  const std::size_t k = ids.size();
+  s.gid.resize(k);
+  for (std::size_t v = 0; v < k; ++v) s.gid[v] = ids[built.order[v]];
+  // Of equal points the first in input order is kept (as delaunay() does).
+  for (const auto& [d, got] : built.dups) s.gid[got] = std::min(s.gid[got], s.gid[d]);
+  for (const auto& [d, got] : built.dups) {
+    if (s.gid[d] != s.gid[got]) s.dup_of.emplace_back(s.gid[d], s.gid[got]);
+    const VertexId own = ids[built.order[got]];
+    if (own != s.gid[got]) s.dup_of.emplace_back(own, s.gid[got]);
+  }
+  s.duplicates = built.dups.size();
+  ids = std::vector<VertexId>{};
+  built.order = std::vector<VertexId>{};
+
   const std::size_t slots = m.num_triangle_slots();
   s.rank.assign(slots, kNone);
   for (TriId t = 0; t < slots; ++t) {
@@ -105,21 +134,52 @@ void triangulate_slab(std::span<const Point> points, Slab& s) {
     const auto [a, b, c] = m.triangle(t);
     if (disc_inside_slab(m.point(a), m.point(b), m.point(c), s.lo, s.hi)) s.rank[t] = static_cast<TriId>(s.kept++);
   }
-  std::vector<std::uint8_t> in_gap(pts.size(), 0);
+  s.in_gap.assign(k, 0);
   for (TriId t = 0; t < slots; ++t) {
     if (!m.is_real(t)) continue;
     if (s.rank[t] == kNone) {
-      for (VertexId v : m.triangle(t)) in_gap[v] = 1;
+      for (VertexId v : m.triangle(t)) s.in_gap[v] = 1;
       continue;
     }
     for (HalfEdgeId e = 3 * t; e < 3 * t + 3; ++e)
       if (s.rank[tri_of(m.twin(e))] == kNone) {
         s.seams.push_back(e);
-        in_gap[m.origin(e)] = in_gap[m.dest(e)] = 1;
+        s.in_gap[m.origin(e)] = s.in_gap[m.dest(e)] = 1;
       }
   }
-  for (VertexId v = 0; v < pts.size(); ++v)
-    if (in_gap[v]) s.gap_vertices.push_back(s.ids[v]);
+  for (VertexId v = 0; v < k; ++v)
+    if (s.in_gap[v]) s.gap_vertices.push_back(s.gid[v]);
+  // Only the triangles are needed from here on: less memory at the merge
+  // (the first slab's point array is reused for the result's points).
+  if (!first) MeshEditor(s.mesh).points() = std::vector<Point>{};
+  MeshEditor(s.mesh).out_edges() = std::vector<HalfEdgeId>{};
+}
+
+// Writes a slab's kept triangles (slab arrays sv, sw) into the result at
+// triangle `first`, their vertices' out-edges for vertices no other part
+// touches, and the seams' half-edges; then frees the slab's mesh (on this
+// thread, in parallel). The first slab is moved in place (sv == tv,
+// first == 0): a kept triangle only moves to a lower slot, after it is read.
+void copy_slab(Slab& s, std::size_t first, const VertexId* sv, const HalfEdgeId* sw, VertexId* tv, HalfEdgeId* tw,
+               HalfEdgeId* ve) {
+  const std::size_t base = 3 * first;
+  for (TriId t = 0; t < s.rank.size(); ++t) {
+    if (s.rank[t] == kNone) continue;
+    const std::size_t f = base + 3 * std::size_t{s.rank[t]};
+    for (int i = 0; i < 3; ++i) {
+      const HalfEdgeId e = 3 * t + i, o = sw[e];
+      const VertexId v = sv[e];
+      tv[f + i] = s.gid[v];
+      // The last out-edge in slot order, as Mesh::compact() picks it.
+      if (!s.in_gap[v]) ve[s.gid[v]] = static_cast<HalfEdgeId>(f + i);
+      const TriId u = s.rank[tri_of(o)];
+      tw[f + i] = u == kNone ? kNone : static_cast<HalfEdgeId>(base + 3 * std::size_t{u} + o % 3);
+    }
+  }
+  for (HalfEdgeId e : s.seams) s.open.push_back(static_cast<HalfEdgeId>(base + 3 * std::size_t{s.rank[tri_of(e)]} + e % 3));
+  s.mesh = Mesh{};
+  s.rank = std::vector<TriId>{};
+  s.in_gap = std::vector<std::uint8_t>{};
 }
 
 // Slab boundaries: quantiles of x over a fixed sample of the points, so the
@@ -151,7 +211,10 @@ std::optional<Mesh> parallel_delaunay(std::span<const Point> points, unsigned pa
     slabs[j].lo = j == 0 ? -std::numeric_limits<double>::infinity() : cuts[j - 1];
     slabs[j].hi = j == cuts.size() ? std::numeric_limits<double>::infinity() : cuts[j];
   }
-  run_tasks(slabs.size(), threads, [&](std::size_t j) { triangulate_slab(points, slabs[j]); });
+  // The first slab's triangle arrays become the result's (sized for all of
+  // it, by Euler's bound): no copy of that slab and no second allocation.
+  run_tasks(slabs.size(), threads,
+            [&](std::size_t j) { triangulate_slab(points, slabs[j], j == 0); });
   for (const Slab& s : slabs)
     if (s.failed) return std::nullopt;
   if (stats) stats->sort_seconds = seconds_since(t0);
@@ -171,7 +234,7 @@ std::optional<Mesh> parallel_delaunay(std::span<const Point> points, unsigned pa
   }
   for (const Slab& s : slabs)
     for (HalfEdgeId e : s.seams) {
-      const VertexId a = gap_index.at(s.ids[s.mesh.origin(e)]), b = gap_index.at(s.ids[s.mesh.dest(e)]);
+      const VertexId a = gap_index.at(s.gid[s.mesh.origin(e)]), b = gap_index.at(s.gid[s.mesh.dest(e)]);
       g.segments.push_back({std::min(a, b), std::max(a, b), 0});
     }
   std::sort(g.segments.begin(), g.segments.end(),
@@ -203,7 +266,7 @@ std::optional<Mesh> parallel_delaunay(std::span<const Point> points, unsigned pa
   for (const Slab& s : slabs)
     for (HalfEdgeId e : s.seams) {
       const auto it = gap_edge.find(
-          directed_key(gap_index.at(s.ids[s.mesh.origin(e)]), gap_index.at(s.ids[s.mesh.dest(e)])));
+          directed_key(gap_index.at(s.gid[s.mesh.origin(e)]), gap_index.at(s.gid[s.mesh.dest(e)])));
       if (it == gap_edge.end()) throw InternalError("parallel_delaunay", "a seam is not an edge of the gap");
       const TriId t = tri_of(it->second);
       if (!covered[t]) {
@@ -225,43 +288,50 @@ std::optional<Mesh> parallel_delaunay(std::span<const Point> points, unsigned pa
   }
 
   // The result: each slab's kept triangles in slot order, slab after slab,
-  // then the gap's triangles outside the kept regions.
+  // then the gap's triangles outside the kept regions. The first slab is
+  // compacted in place, so the others start after its slots; the hole it
+  // leaves (its dropped triangles and ghosts, a few per hull and seam edge)
+  // is filled from the end below.
   std::vector<std::size_t> offset(slabs.size() + 1, 0);
-  for (std::size_t j = 0; j < slabs.size(); ++j) offset[j + 1] = offset[j] + slabs[j].kept;
+  const std::size_t first_slots = slabs[0].rank.size();
+  for (std::size_t j = 0; j < slabs.size(); ++j) offset[j + 1] = (j == 0 ? first_slots : offset[j] + slabs[j].kept);
   std::vector<TriId> gap_rank(gap_slots, kNone);
-  std::size_t total = offset.back();
+  std::size_t gap_count = 0;
   for (TriId t = 0; t < gap_slots; ++t)
-    if (gap.is_real(t) && !covered[t]) gap_rank[t] = static_cast<TriId>(total++ - offset.back());
-  if (total >= kNone / 3) throw InputError("too many triangles: at most 1431655764 are supported");
+    if (gap.is_real(t) && !covered[t]) gap_rank[t] = static_cast<TriId>(gap_count++);
+  const std::size_t end = offset.back() + gap_count;  // slots in use, holes included
+  const std::size_t total = end - (first_slots - slabs[0].kept);
+  if (end >= kNone / 3) throw InputError("too many triangles: at most 1431655764 are supported");
 
+  std::size_t duplicates = 0;
+  for (const Slab& s : slabs) duplicates += s.duplicates;
   Mesh out;
+  MeshEditor(out).points() = std::move(MeshEditor(slabs[0].mesh).points());  // capacity for all
   MeshEditor(out).points().assign(points.begin(), points.end());
+  // Duplicates keep kNone; every other vertex is given an out-edge below.
   MeshEditor(out).out_edges().assign(n, kNone);
   std::vector<VertexId>& tv = MeshEditor(out).triangle_vertices();
   std::vector<HalfEdgeId>& tw = MeshEditor(out).twins();
-  tv.resize(3 * total);
-  tw.resize(3 * total);
+  std::vector<HalfEdgeId>& ve = MeshEditor(out).out_edges();
+  tv = std::move(MeshEditor(slabs[0].mesh).triangle_vertices());
+  tw = std::move(MeshEditor(slabs[0].mesh).twins());
+  if (tv.size() != 3 * first_slots) throw InternalError("parallel_delaunay", "the first slab's arrays changed size");
+  tv.resize(3 * end);  // within the capacity reserved: the first slab's part is not copied
+  tw.resize(3 * end);
   run_tasks(slabs.size(), threads, [&](std::size_t j) {
-    Slab& s = slabs[j];
-    const Mesh& m = s.mesh;
-    const std::size_t base = 3 * offset[j];
-    for (TriId t = 0; t < s.rank.size(); ++t) {
-      if (s.rank[t] == kNone) continue;
-      const std::size_t f = base + 3 * std::size_t{s.rank[t]};
-      for (int i = 0; i < 3; ++i) {
-        const HalfEdgeId e = 3 * t + i, o = m.twin(e);
-        tv[f + i] = s.ids[m.origin(e)];
-        const TriId u = s.rank[tri_of(o)];
-        tw[f + i] = u == kNone ? kNone : static_cast<HalfEdgeId>(base + 3 * std::size_t{u} + o % 3);
-      }
-    }
+    const Mesh& m = slabs[j].mesh;
+    const VertexId* sv = j == 0 ? tv.data() : m.triangle_vertices().data();
+    const HalfEdgeId* sw = j == 0 ? tw.data() : MeshEditor(slabs[j].mesh).twins().data();
+    copy_slab(slabs[j], offset[j], sv, sw, tv.data(), tw.data(), ve.data());
   });
   // Half-edges left without a twin: seams, the gap's edges along them, and
-  // the hull; paired by their vertices.
+  // the hull; paired by their vertices. The gap's vertices get their
+  // out-edges here: from the seams, then from the gap's triangles.
   std::vector<HalfEdgeId> open;
-  for (std::size_t j = 0; j < slabs.size(); ++j)
-    for (HalfEdgeId e : slabs[j].seams)
-      open.push_back(static_cast<HalfEdgeId>(3 * (offset[j] + slabs[j].rank[tri_of(e)]) + e % 3));
+  for (const Slab& s : slabs) {
+    open.insert(open.end(), s.open.begin(), s.open.end());
+    for (HalfEdgeId h : s.open) ve[tv[h]] = h;
+  }
   const std::size_t gap_base = 3 * offset.back();
   for (TriId t = 0; t < gap_slots; ++t) {
     if (gap_rank[t] == kNone) continue;
@@ -269,12 +339,12 @@ std::optional<Mesh> parallel_delaunay(std::span<const Point> points, unsigned pa
     for (int i = 0; i < 3; ++i) {
       const HalfEdgeId e = 3 * t + i, o = gap.twin(e);
       tv[f + i] = gap_ids[gap.origin(e)];
+      ve[tv[f + i]] = static_cast<HalfEdgeId>(f + i);
       const TriId u = o == kNone ? kNone : gap_rank[tri_of(o)];
       tw[f + i] = u == kNone ? kNone : static_cast<HalfEdgeId>(gap_base + 3 * std::size_t{u} + o % 3);
       if (u == kNone) open.push_back(static_cast<HalfEdgeId>(f + i));
     }
   }
-  for (Slab& s : slabs) s.mesh = Mesh{};
   std::unordered_map<std::uint64_t, HalfEdgeId> by_vertices;
   by_vertices.reserve(2 * open.size());
   for (HalfEdgeId h : open) by_vertices.emplace(directed_key(tv[h], tv[next_edge(h)]), h);
@@ -283,26 +353,47 @@ std::optional<Mesh> parallel_delaunay(std::span<const Point> points, unsigned pa
     const auto it = by_vertices.find(directed_key(tv[next_edge(h)], tv[h]));
     if (it == by_vertices.end()) {
       ++hull;
+      ve[tv[h]] = h;  // a boundary vertex starts its fan at its boundary edge, as Mesh::compact() has it
       continue;
     }
     tw[h] = it->second;
   }
+  // The first slab's hole, [kept, first_slots) as far as it lies below
+  // `total`, takes the triangles beyond `total`, in order (as
+  // Mesh::compact() fills its holes, over these few slots only).
+  {
+    std::size_t to = slabs[0].kept, from = std::max(first_slots, total);
+    for (; from < end; ++from, ++to)
+      for (int i = 0; i < 3; ++i) {
+        const std::size_t o = 3 * from + i, m = 3 * to + i;
+        tv[m] = tv[o];
+        tw[m] = tw[o];
+        if (tw[m] != kNone) tw[tw[m]] = static_cast<HalfEdgeId>(m);
+        if (ve[tv[m]] == o) ve[tv[m]] = static_cast<HalfEdgeId>(m);
+      }
+    if (to != std::min(first_slots, total)) throw InternalError("parallel_delaunay", "the first slab's hole is not filled");
+    tv.resize(3 * total);
+    tw.resize(3 * total);
+  }
   // Euler: a triangulation of k distinct points with h hull edges has
   // 2k - 2 - h triangles; anything else is an overlap or a hole.
-  std::size_t duplicates = 0;
-  for (const Slab& s : slabs) duplicates += s.stats.duplicates;
   if (total + 2 + hull != 2 * (n - duplicates))
     throw InternalError("parallel_delaunay", "the merged triangulation has " + std::to_string(total) +
                                                  " triangles, " + std::to_string(hull) + " hull edges and " +
                                                  std::to_string(n - duplicates) + " vertices");
-  out.compact();  // vertex out-edges, boundary first
+  for (VertexId v : gap_ids)
+    if (ve[v] == kNone || tv[ve[v]] != v)
+      throw InternalError("parallel_delaunay", "vertex " + std::to_string(v) + " of the gap has no out-edge");
+  // The result is compact as built (only real triangles, no free slots,
+  // out-edges set): no Mesh::compact() pass over all of it.
+  MeshEditor(out).set_live_real(total);
+  MeshEditor(out).set_compacted();
 
   if (stats) {
     stats->duplicates = duplicates;
     stats->duplicate_of.assign(n, kNone);
     for (const Slab& s : slabs)
-      for (std::size_t v = 0; v < s.ids.size(); ++v)
-        if (s.stats.duplicate_of[v] != kNone) stats->duplicate_of[s.ids[v]] = s.ids[s.stats.duplicate_of[v]];
+      for (const auto& [copy, kept] : s.dup_of) stats->duplicate_of[copy] = kept;
     stats->insert_seconds = seconds_since(t0);
   }
   return out;

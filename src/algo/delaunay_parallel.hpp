@@ -1,11 +1,32 @@
 // Delaunay triangulation of a point set on several threads (docs/scaling.md).
 #pragma once
+#include <chrono>
 #include <optional>
 #include <span>
+#include <utility>
+#include <vector>
 
 #include "deltamesh/delaunay.hpp"
 
 namespace deltamesh::detail {
+
+// delaunay()'s build before renumbering: the closed triangulation (ghosts
+// kept, not compacted) whose vertex k is points[order[k]] (the BRIO/Hilbert
+// insertion order), and (duplicate, vertex it met) in that numbering.
+// Throws InputError when the points make no triangle. `t0` is the start of
+// the sort on entry (for stats->sort_seconds) and of the insertion on return.
+// The triangle arrays get capacity for `reserve_triangles`, the points for
+// `reserve_points` (untouched pages until used). `release_after_sort`, when
+// given, is the vector `points` views: it is freed once they are sorted.
+struct InsertionOrderDelaunay {
+  Mesh mesh;
+  std::vector<VertexId> order;
+  std::vector<std::pair<VertexId, VertexId>> dups;
+};
+InsertionOrderDelaunay delaunay_in_insertion_order(std::span<const Point> points, TraceObserver* trace,
+                                                   DelaunayStats* stats, std::chrono::steady_clock::time_point& t0,
+                                                   std::size_t reserve_triangles = 0, std::size_t reserve_points = 0,
+                                                   std::vector<Point>* release_after_sort = nullptr);
 
 // Points below this per part are not worth a thread: delaunay() stays
 // sequential when n / threads is smaller.

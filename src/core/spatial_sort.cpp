@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 
 namespace deltamesh::detail {
 
@@ -133,7 +134,8 @@ std::vector<VertexId> hilbert_order(std::span<const Point> points, std::vector<P
     }
     return kLastRound - level;
   };
-  std::vector<std::uint64_t> keys(n), tmp(n);
+  // Written before read: default-initialised (no zero-fill of 16n bytes).
+  std::unique_ptr<std::uint64_t[]> keys(new std::uint64_t[n]), tmp(new std::uint64_t[n]);
   std::vector<std::size_t> low(kBuckets + 1, 0), high(kBuckets + 1, 0);
   for (std::size_t i = 0; i < n; ++i) {
     const auto qx = static_cast<std::uint32_t>(std::clamp((points[i].x - minx) * scale, 0.0, kCells));
@@ -148,10 +150,9 @@ std::vector<VertexId> hilbert_order(std::span<const Point> points, std::vector<P
     low[b + 1] += low[b];
     high[b + 1] += high[b];
   }
-  for (const std::uint64_t k : keys) tmp[low[(k >> 32) & (kBuckets - 1)]++] = k;
-  for (const std::uint64_t k : tmp) keys[high[k >> (32 + kBits)]++] = k;
-  tmp.clear();
-  tmp.shrink_to_fit();
+  for (std::size_t i = 0; i < n; ++i) tmp[low[(keys[i] >> 32) & (kBuckets - 1)]++] = keys[i];
+  for (std::size_t i = 0; i < n; ++i) keys[high[tmp[i] >> (32 + kBits)]++] = tmp[i];
+  tmp.reset();
   for (std::size_t k = 0; k < n; ++k) order[k] = static_cast<VertexId>(keys[k]);
   if (sorted)
     for (std::size_t k = 0; k < n; ++k) (*sorted)[k] = points[order[k]];

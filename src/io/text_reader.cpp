@@ -411,18 +411,21 @@ bool TextReader::try_point_line(long long expected_id, bool with_marker, double&
 }
 
 bool TextReader::try_point_lines(long long first_id, std::size_t count, bool with_marker, unsigned threads,
-                                 std::vector<double>& xy, std::vector<int>& markers) {
+                                 std::vector<Point>& points, std::vector<int>& markers) {
   if (count == 0) return true;
   // A piece: lines parsed from a line start until one is not a point line
-  // or the piece ends; ids consecutive from the first line's own.
+  // or the piece ends; ids consecutive from the first line's own. The first
+  // piece appends to `points` and `markers` themselves (no copy at the
+  // join), the others to their own vectors.
   struct Piece {
     std::size_t begin = 0, end = 0;  // byte range, both at line starts
     long long first = -1;            // id of its first line
     std::size_t parsed = 0;          // point lines from its start
     std::size_t stop = 0;            // where parsing stopped
-    std::vector<double> xy;
+    std::vector<Point> points;
     std::vector<int> markers;
   };
+  const std::size_t points_before = points.size(), markers_before = markers.size();
   const std::size_t total = text_.size() - pos_;
   const std::size_t pieces = std::max<std::size_t>(1, std::min<std::size_t>(threads, total / (1u << 20)));
   std::vector<Piece> part(pieces);
@@ -435,6 +438,8 @@ bool TextReader::try_point_lines(long long first_id, std::size_t count, bool wit
   detail::run_tasks(pieces, threads, [&](std::size_t j) {
     Piece& q = part[j];
     if (q.begin >= q.end) return;
+    std::vector<Point>& out = j == 0 ? points : q.points;
+    std::vector<int>& out_markers = j == 0 ? markers : q.markers;
     // A reader over the piece, sharing the text (no copy).
     TextReader r(file_, Mapping{});
     r.text_ = text_.substr(0, q.end);
@@ -443,13 +448,12 @@ bool TextReader::try_point_lines(long long first_id, std::size_t count, bool wit
     const char* const stop = r.text_.data() + r.text_.size();
     while (p < stop && (*p == ' ' || *p == '\t')) ++p;
     if (parse_small_unsigned(p, stop, q.first) == nullptr) return;
-    q.xy.reserve(2 * ((q.end - q.begin) / 16 + 1));
+    if (j > 0) q.points.reserve((q.end - q.begin) / 16 + 1);
     double x, y;
     long long m = 0;
     while (r.pos_ < q.end && r.try_point_line(q.first + static_cast<long long>(q.parsed), with_marker, x, y, m)) {
-      q.xy.push_back(x);
-      q.xy.push_back(y);
-      if (with_marker) q.markers.push_back(static_cast<int>(m));
+      out.push_back({x, y});
+      if (with_marker) out_markers.push_back(static_cast<int>(m));
       ++q.parsed;
     }
     q.stop = r.pos_;
@@ -459,24 +463,39 @@ bool TextReader::try_point_lines(long long first_id, std::size_t count, bool wit
   std::size_t got = 0;
   long long next = first_id;
   std::size_t end_pos = pos_;
+  bool all = true;
   for (const Piece& q : part) {
     if (got == count) break;
     if (q.begin >= q.end) continue;
     const std::size_t need = count - got;
-    if (q.first != next || (q.parsed < need && q.stop != q.end)) return false;
+    if (q.first != next || (q.parsed < need && q.stop != q.end)) {
+      all = false;
+      break;
+    }
     const std::size_t take = std::min(need, q.parsed);
     got += take;
     next += static_cast<long long>(take);
   }
-  if (got != count) return false;
+  if (!all || got != count) {
+    points.resize(points_before);
+    markers.resize(markers_before);
+    return false;
+  }
   // Commit: the values, and the position after the last line taken.
   got = 0;
-  for (const Piece& q : part) {
+  for (std::size_t j = 0; j < pieces; ++j) {
+    const Piece& q = part[j];
     if (got == count) break;
     if (q.begin >= q.end) continue;
     const std::size_t take = std::min(count - got, q.parsed);
-    xy.insert(xy.end(), q.xy.begin(), q.xy.begin() + static_cast<std::ptrdiff_t>(2 * take));
-    if (with_marker) markers.insert(markers.end(), q.markers.begin(), q.markers.begin() + static_cast<std::ptrdiff_t>(take));
+    if (j == 0) {
+      points.resize(points_before + take);
+      if (with_marker) markers.resize(markers_before + take);
+    } else {
+      points.insert(points.end(), q.points.begin(), q.points.begin() + static_cast<std::ptrdiff_t>(take));
+      if (with_marker)
+        markers.insert(markers.end(), q.markers.begin(), q.markers.begin() + static_cast<std::ptrdiff_t>(take));
+    }
     end_pos = q.stop;
     if (take < q.parsed) {  // the block ends inside this piece: find the end of its last line
       end_pos = q.begin;

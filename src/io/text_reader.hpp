@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "deltamesh/errors.hpp"
+#include "deltamesh/geometry.hpp"
 
 namespace deltamesh::io {
 
@@ -79,9 +80,10 @@ class TextReader {
   // order. All or nothing: false, consuming nothing, when any of those lines
   // is not of that shape (a comment, a blank line, an error...), so the
   // caller's general path reads them and words any error as before; true
-  // when all were, with `xy` (x, y per line) and `markers` appended.
+  // when all were, with `points` and `markers` appended (the first piece is
+  // parsed straight into them: reserve their capacity beforehand).
   bool try_point_lines(long long first_id, std::size_t count, bool with_marker, unsigned threads,
-                       std::vector<double>& xy, std::vector<int>& markers);
+                       std::vector<Point>& points, std::vector<int>& markers);
 
   std::size_t size() const { return tokens_.size(); }
   std::string_view token(std::size_t i) const { return tokens_[i]; }

@@ -167,11 +167,7 @@ void read_vertices(TextReader& r, const NodeHeader& h, Pslg& g, unsigned threads
   long long base = 0;
   for (long long i = 0; i < h.count; ++i) {
     if (i == 1 && na == 0 && threads > 1 && h.count >= kParallelParseVertices) {
-      std::vector<double> xy;
-      if (r.try_point_lines(base + 1, n - 1, h.markers, threads, xy, g.point_markers)) {
-        for (std::size_t k = 0; k < xy.size(); k += 2) g.points.push_back({xy[k], xy[k + 1]});
-        break;
-      }
+      if (r.try_point_lines(base + 1, n - 1, h.markers, threads, g.points, g.point_markers)) break;
     }
     if (i > 0 && na == 0) {
       double x, y;

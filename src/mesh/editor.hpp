@@ -27,6 +27,9 @@ class MeshEditor {
   void recount() { m_.recount(); }
   std::size_t live_real() const { return m_.live_real_; }
   void set_live_real(std::size_t n) { m_.live_real_ = n; }
+  // For a mesh built compact (only real triangles, no free slots, every
+  // vertex's out-edge set, boundary ones first): what compact() would leave.
+  void set_compacted() { m_.compacted_ = true; }
 
  private:
   Mesh& m_;
