@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "core/parallel.hpp"
+#include "mesh/canonical.hpp"
 #include "mesh/editor.hpp"
 #include "deltamesh/errors.hpp"
 #include "mesh/legalize.hpp"
@@ -245,6 +246,10 @@ std::optional<RefineStats> refine_in_parts(Mesh& mesh, const RefineOptions& opti
     return std::nullopt;
   const auto t0 = std::chrono::steady_clock::now();
   if (!mesh.compacted()) mesh.compact();
+  // The coarse stage starts, as refine() does, from slots in an order of
+  // the triangulation's own, so that scaling the input by 10^k gives the
+  // same mesh; the later stages inherit their order from it.
+  canonical_triangle_order(mesh);
   // A refined mesh's triangles average about half the area bound.
   const double expected = domain_area(mesh) / (0.5 * options.max_area);
   if (parts == 0)
