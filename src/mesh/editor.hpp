@@ -27,6 +27,9 @@ class MeshEditor {
   void recount() { m_.recount(); }
   std::size_t live_real() const { return m_.live_real_; }
   void set_live_real(std::size_t n) { m_.live_real_ = n; }
+  // After bulk edits that leave no dead or ghost slot and set the out-edges
+  // as Mesh::compact() does (refine_in_parts' stitch).
+  void set_compacted() { m_.compacted_ = true; }
 
  private:
   Mesh& m_;
