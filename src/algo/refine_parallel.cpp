@@ -9,7 +9,6 @@
 #include "algo/refine_parallel.hpp"
 
 #include <algorithm>
-#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
@@ -121,31 +120,6 @@ void cut_part(const Mesh& whole, const std::vector<std::uint32_t>& slab, const s
   m.compact();  // out-edges, counts
 }
 
-// Out-edges as Mesh::compact() sets them, by compare-and-swap (the same
-// result in any interleaving): the largest out-edge of every vertex, then the
-// largest boundary one of a boundary vertex.
-void set_out_edges(Mesh& m, unsigned threads) {
-  const std::vector<VertexId>& tv = MeshEditor(m).triangle_vertices();
-  const std::vector<HalfEdgeId>& tw = MeshEditor(m).twins();
-  std::vector<HalfEdgeId>& ve = MeshEditor(m).out_edges();
-  std::fill(ve.begin(), ve.end(), kNone);
-  const std::size_t ne = tv.size(), chunks = 4 * std::size_t{threads};
-  for (const bool boundary : {false, true})
-    run_tasks(chunks, threads, [&](std::size_t i) {
-      for (std::size_t k = ne * i / chunks; k < ne * (i + 1) / chunks; ++k) {
-        const auto e = static_cast<HalfEdgeId>(k);
-        if (boundary && tw[e] != kNone) continue;
-        std::atomic_ref<HalfEdgeId> v(ve[tv[e]]);
-        HalfEdgeId cur = v.load(std::memory_order_relaxed);
-        const auto replace = [&] {
-          return cur == kNone || cur < e || (boundary && tw[cur] != kNone);
-        };
-        while (replace() && !v.compare_exchange_weak(cur, e, std::memory_order_relaxed)) {
-        }
-      }
-    });
-}
-
 // The parts back in one mesh: the whole mesh's vertices keep their ids, the
 // parts' new vertices follow part by part; boundary half-edges are paired by
 // their vertices, and the temporary segments become ordinary edges again.
@@ -248,10 +222,10 @@ Mesh stitch(const Mesh& whole, std::vector<Part>& parts, unsigned threads, std::
   for (Part& p : parts) p.mesh = Mesh{};
   if (bounds)
     for (TriId t = 0; t < nt; ++t) out.set_triangle_area_bound(t, area_bounds[t]);
-  // The parts are compacted (no dead or ghost slot), so is their union:
-  // what compact() would add is the out-edges, here on all threads, with its
-  // rule (a vertex's last out-edge; a boundary vertex's last boundary one).
-  set_out_edges(out, threads);
+  // The parts are compacted (no dead or ghost slot), so is their union. Its
+  // out-edges stay unset (kNone): the Lawson flips below do not read them,
+  // and the last pass's setup sets them all from scratch on every thread
+  // (Mesh::compact() here cost a whole-mesh pass on one thread).
   MeshEditor(out).set_live_real(nt);
   MeshEditor(out).set_compacted();
   return out;
