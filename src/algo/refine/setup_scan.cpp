@@ -81,6 +81,7 @@ void Refiner::sectors_in_parallel(std::vector<Sector>& out) const {
   std::vector<std::vector<Sector>> found(chunks);
   for_chunks(ne, scan_threads_, [&](std::size_t i, std::size_t lo, std::size_t hi) {
     for (std::size_t e = lo; e < hi; ++e) {
+      if (!(fl_[e] & kConstrained)) continue;  // most are not: no call
       Sector s{static_cast<HalfEdgeId>(e), kNone, 0};
       if (sector_at(s)) found[i].push_back(s);
     }
