@@ -44,9 +44,13 @@ void Refiner::run() {
   setup();
   queue_encroached();
   const std::size_t nt = tv_.size() / 3;
-  const std::vector<std::uint8_t> bad = bad_slots();  // consider() queues only bad ones
+  std::vector<std::uint8_t> bad = bad_slots();  // consider() queues only bad ones
   for (TriId t = 0; t < nt; ++t)
     if (bad.empty() || bad[t]) consider(t);
+  if (!bad.empty() && !has_area_bounds_) {  // finish() re-evaluates only the slots refinement rewrites
+    first_bad_ = std::move(bad);
+    first_tv_ = tv_;
+  }
   ProgressReporter progress(opt_.progress, "refine", "Steiner points");
   refine_loop(progress);
   if (beyond_ && !stopped_) go_beyond(progress);  // beyond.cpp

@@ -143,7 +143,11 @@ class Refiner {
   }
   void consider(TriId t);
   // Per triangle slot, 1 when eval() finds it bad; empty on one scan thread.
+  // After the first look (first_bad_, first_tv_ kept by run()), slots that
+  // still hold the same triangle are not evaluated again.
   std::vector<std::uint8_t> bad_slots() const;
+  std::vector<std::uint8_t> first_bad_;
+  std::vector<VertexId> first_tv_;
   // Precision, measured where the edge is (not over the domain): an edge
   // ab of squared length len2 is too short to split when below
   // kPrecisionFloor of the largest coordinate magnitude of a and b; a point
