@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "core/parallel.hpp"
+#include "mesh/canonical.hpp"
 #include "mesh/editor.hpp"
 #include "deltamesh/errors.hpp"
 #include "mesh/legalize.hpp"
@@ -221,7 +222,12 @@ Mesh stitch(const Mesh& whole, std::vector<Part>& parts, unsigned threads, std::
   for (Part& p : parts) p.mesh = Mesh{};
   if (bounds)
     for (TriId t = 0; t < nt; ++t) out.set_triangle_area_bound(t, area_bounds[t]);
-  out.compact();
+  // The parts are compacted (no dead or ghost slot), so is their union. Its
+  // out-edges stay unset (kNone): the Lawson flips below do not read them,
+  // and the last pass's setup sets them all from scratch on every thread
+  // (Mesh::compact() here cost a whole-mesh pass on one thread).
+  MeshEditor(out).set_live_real(nt);
+  MeshEditor(out).set_compacted();
   return out;
 }
 
@@ -245,6 +251,10 @@ std::optional<RefineStats> refine_in_parts(Mesh& mesh, const RefineOptions& opti
     return std::nullopt;
   const auto t0 = std::chrono::steady_clock::now();
   if (!mesh.compacted()) mesh.compact();
+  // The coarse stage starts, as refine() does, from slots in an order of
+  // the triangulation's own, so that scaling the input by 10^k gives the
+  // same mesh; the later stages inherit their order from it.
+  canonical_triangle_order(mesh);
   // A refined mesh's triangles average about half the area bound.
   const double expected = domain_area(mesh) / (0.5 * options.max_area);
   if (parts == 0)

@@ -28,7 +28,8 @@ class MeshEditor {
   std::size_t live_real() const { return m_.live_real_; }
   void set_live_real(std::size_t n) { m_.live_real_ = n; }
   // For a mesh built compact (only real triangles, no free slots, every
-  // vertex's out-edge set, boundary ones first): what compact() would leave.
+  // vertex's out-edge set, boundary ones first): what compact() would leave
+  // (the parallel Delaunay's result, refine_in_parts' stitch).
   void set_compacted() { m_.compacted_ = true; }
 
  private:

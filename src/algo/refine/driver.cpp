@@ -44,9 +44,13 @@ void Refiner::run() {
   setup();
   queue_encroached();
   const std::size_t nt = tv_.size() / 3;
-  const std::vector<std::uint8_t> bad = bad_slots();  // consider() queues only bad ones
+  std::vector<std::uint8_t> bad = bad_slots();  // consider() queues only bad ones
   for (TriId t = 0; t < nt; ++t)
     if (bad.empty() || bad[t]) consider(t);
+  if (!bad.empty() && !has_area_bounds_) {  // finish() re-evaluates only the slots refinement rewrites
+    first_bad_ = std::move(bad);
+    first_tv_ = tv_;
+  }
   ProgressReporter progress(opt_.progress, "refine", "Steiner points");
   refine_loop(progress);
   if (beyond_ && !stopped_) go_beyond(progress);  // beyond.cpp
@@ -74,21 +78,24 @@ void Refiner::setup() {
   if (budget_ == kAutomaticBudget) budget_ = kAutomaticBudgetBase + kAutomaticBudgetPerVertex * n_input_;
 
 
-  // Every boundary edge is a segment.
+  // Every boundary edge is a segment; the input segments and their incidence
+  // at input vertices (on scan_threads_ threads: setup_scan.cpp).
   const std::size_t ne = tv_.size();
-  for (HalfEdgeId e = 0; e < ne; ++e)
-    if (tw_[e] == kNone && !m_.is_constrained(e)) m_.set_edge_flags(e, m_.edge_flags(e) | kConstrained);
-  has_markers_ = m_.has_edge_markers();
-
-  // Input segments and their incidence at input vertices.
-  adj_start_.assign(n_input_ + 1, 0);
-  for (HalfEdgeId e = 0; e < ne; ++e) {
-    if (!(fl_[e] & kConstrained) || (tw_[e] != kNone && tw_[e] < e)) continue;
-    const VertexId a = tv_[e], b = tv_[next_edge(e)];
-    segs_.push_back({a, b});
-    seg_spike_.push_back(tw_[e] == kNone ? kBoundarySeg : 0);  // a boundary one runs with the domain on its left
-    ++adj_start_[a + 1];
-    ++adj_start_[b + 1];
+  if (scan_threads_ > 1) {
+    scan_edges_in_parallel();
+  } else {
+    for (HalfEdgeId e = 0; e < ne; ++e)
+      if (tw_[e] == kNone && !m_.is_constrained(e)) m_.set_edge_flags(e, m_.edge_flags(e) | kConstrained);
+    has_markers_ = m_.has_edge_markers();
+    adj_start_.assign(n_input_ + 1, 0);
+    for (HalfEdgeId e = 0; e < ne; ++e) {
+      if (!(fl_[e] & kConstrained) || (tw_[e] != kNone && tw_[e] < e)) continue;
+      const VertexId a = tv_[e], b = tv_[next_edge(e)];
+      segs_.push_back({a, b});
+      seg_spike_.push_back(tw_[e] == kNone ? kBoundarySeg : 0);  // a boundary one runs with the domain on its left
+      ++adj_start_[a + 1];
+      ++adj_start_[b + 1];
+    }
   }
   for (std::size_t v = 0; v < n_input_; ++v) adj_start_[v + 1] += adj_start_[v];
   adj_.resize(adj_start_[n_input_]);
@@ -102,10 +109,13 @@ void Refiner::setup() {
   }
   find_small_angles();
   // Out-edges from scratch: any out-edge for an interior vertex, the
-  // boundary one (most clockwise) for a boundary vertex, as compact() sets them.
-  std::fill(ve_.begin(), ve_.end(), kNone);
-  for (HalfEdgeId e = 0; e < ne; ++e)
-    if (ve_[tv_[e]] == kNone || tw_[e] == kNone) ve_[tv_[e]] = e;
+  // boundary one (most clockwise) for a boundary vertex, as compact() sets
+  // them (scan_edges_in_parallel() set them already).
+  if (scan_threads_ < 2) {
+    std::fill(ve_.begin(), ve_.end(), kNone);
+    for (HalfEdgeId e = 0; e < ne; ++e)
+      if (ve_[tv_[e]] == kNone || tw_[e] == kNone) ve_[tv_[e]] = e;
+  }
   seg_of_.assign(n_input_, kNone);
   if (!m_.vertex_markers().empty()) m_.vertex_markers().resize(n_input_, 0);
   reserve_for_area_bounds();
@@ -140,6 +150,21 @@ void Refiner::set_bound(double theta) {
   }
 }
 
+// Triangle t's area over its area bound (0 without one, or for a ghost).
+double Refiner::area_ratio(TriId t, bool global) const {
+  if (tv_[3 * t] >= pts_.size()) return 0;
+  const Point& a = pts_[tv_[3 * t]];
+  const Point& b = pts_[tv_[3 * t + 1]];
+  const Point& c = pts_[tv_[3 * t + 2]];
+  const double area = 0.5 * ((b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x));
+  double bound = global ? opt_.max_area : -1;
+  if (has_area_bounds_) {
+    const double tb = m_.triangle_area_bound(t);
+    if (tb > 0 && (bound <= 0 || tb < bound)) bound = tb;
+  }
+  return bound > 0 ? area / bound : 0;
+}
+
 // With area bounds the final size is predictable: reserve it, so the arrays
 // do not double (and briefly triple) at the end.
 void Refiner::reserve_for_area_bounds() {
@@ -147,19 +172,9 @@ void Refiner::reserve_for_area_bounds() {
   if (!global && !has_area_bounds_) return;
   double estimate = 0;
   const std::size_t nt = tv_.size() / 3;
-  for (TriId t = 0; t < nt; ++t) {
-    if (tv_[3 * t] >= pts_.size()) continue;
-    const Point& a = pts_[tv_[3 * t]];
-    const Point& b = pts_[tv_[3 * t + 1]];
-    const Point& c = pts_[tv_[3 * t + 2]];
-    const double area = 0.5 * ((b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x));
-    double bound = global ? opt_.max_area : -1;
-    if (has_area_bounds_) {
-      const double tb = m_.triangle_area_bound(t);
-      if (tb > 0 && (bound <= 0 || tb < bound)) bound = tb;
-    }
-    if (bound > 0) estimate += area / bound;
-  }
+  if (scan_threads_ > 1) estimate = area_estimate_in_parallel(global);  // setup_scan.cpp
+  else
+    for (TriId t = 0; t < nt; ++t) estimate += area_ratio(t, global);
   // Refinement to an area bound A ends with triangles of mean area ~0.6 A.
   const double tris = 1.75 * estimate + static_cast<double>(nt);
   if (tris > 1e10) return;
@@ -182,6 +197,7 @@ void Refiner::reserve_for_area_bounds() {
 
 // Encroached subsegments, for rule R1 before anything else.
 void Refiner::queue_encroached() {
+  if (scan_threads_ > 1) return queue_encroached_in_parallel();  // setup_scan.cpp: the same, in the same order
   for (HalfEdgeId e = 0; e < tv_.size(); ++e)
     if ((fl_[e] & kConstrained) && (tw_[e] == kNone || tw_[e] > e) && encroached(e) && splittable(e))
       encroached_.push_back({tv_[e], tv_[next_edge(e)], e});

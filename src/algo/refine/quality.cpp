@@ -73,10 +73,16 @@ std::vector<std::uint8_t> Refiner::bad_slots() const {
   std::vector<std::uint8_t> bad;
   if (scan_threads_ < 2 || opt_.max_area_at || opt_.max_edge_at) return bad;
   const std::size_t nt = tv_.size() / 3, chunks = 4 * std::size_t{scan_threads_};
+  const std::size_t before = first_tv_.size() / 3;  // slots as the first look saw them (run())
   bad.resize(nt);
   detail::run_tasks(chunks, scan_threads_, [&](std::size_t i) {
     for (std::size_t t = nt * i / chunks; t < nt * (i + 1) / chunks; ++t) {
       if (tv_[3 * t] >= pts_.size()) continue;  // a dead or ghost slot: never bad
+      if (t < before && tv_[3 * t] == first_tv_[3 * t] && tv_[3 * t + 1] == first_tv_[3 * t + 1] &&
+          tv_[3 * t + 2] == first_tv_[3 * t + 2]) {  // the same triangle (no size callbacks or per-triangle bounds)
+        bad[t] = first_bad_[t];
+        continue;
+      }
       const Eval ev = eval(static_cast<TriId>(t));
       bad[t] = ev.skinny || ev.large;
     }

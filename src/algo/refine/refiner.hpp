@@ -102,7 +102,12 @@ class Refiner {
   void set_unit();
   void set_bound(double theta);
   void reserve_for_area_bounds();
+  double area_ratio(TriId t, bool global) const;
   void queue_encroached();
+  // ---- setup_scan.cpp: setup()'s passes on scan_threads_ threads ----------
+  void scan_edges_in_parallel();
+  void queue_encroached_in_parallel();
+  double area_estimate_in_parallel(bool global) const;
   void refine_loop(ProgressReporter& progress);
   inline bool tick();
   inline void split_encroached_segment();
@@ -138,7 +143,11 @@ class Refiner {
   }
   void consider(TriId t);
   // Per triangle slot, 1 when eval() finds it bad; empty on one scan thread.
+  // After the first look (first_bad_, first_tv_ kept by run()), slots that
+  // still hold the same triangle are not evaluated again.
   std::vector<std::uint8_t> bad_slots() const;
+  std::vector<std::uint8_t> first_bad_;
+  std::vector<VertexId> first_tv_;
   // Precision, measured where the edge is (not over the domain): an edge
   // ab of squared length len2 is too short to split when below
   // kPrecisionFloor of the largest coordinate magnitude of a and b; a point
@@ -188,6 +197,13 @@ class Refiner {
 
   // ---- small_angle.cpp: the rules that make refinement terminate --------------
   void find_small_angles();
+  struct Sector {  // from constrained out-edge e0 counter-clockwise to g
+    HalfEdgeId e0, g;
+    double angle;
+  };
+  bool sector_at(Sector& s) const;
+  void note_sector(const Sector& s);
+  void sectors_in_parallel(std::vector<Sector>& out) const;
   void mark_spikes();
   TriView view(TriId t) const;
   bool faces_small_angle(TriId t, const Eval& ev) const { return faces_small_angle(view(t), ev); }

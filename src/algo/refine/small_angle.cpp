@@ -45,54 +45,78 @@ void Refiner::find_small_angles() {
   // A sector runs counter-clockwise from a constrained out-edge through
   // unconstrained edges to the next constrained edge; its angle is the sum
   // of the triangle corners in it.
-  const std::size_t ne = tv_.size();
   seg_small_.assign(segs_.size(), 0);
   partners_.assign(2 * segs_.size(), {kNone, kNone});
   apex_cos_.assign(n_input_, -2.0f);
-  for (HalfEdgeId e0 = 0; e0 < ne; ++e0) {
-    const VertexId v = tv_[e0];
-    if (v >= n_input_ || !(fl_[e0] & kConstrained)) continue;
-    const Point& A = pts_[v];
-    double angle = 0;
-    HalfEdgeId g = e0;
-    bool closed = false;
-    for (std::size_t guard = 0; guard < 1u << 20; ++guard) {
-      const HalfEdgeId p = prev_edge(g);  // y -> v, the corner's other edge
-      const Point& X = pts_[tv_[next_edge(g)]];
-      const Point& Y = pts_[tv_[p]];
-      const double ux = X.x - A.x, uy = X.y - A.y, wx = Y.x - A.x, wy = Y.y - A.y;
-      angle += std::atan2(std::fabs(ux * wy - uy * wx), ux * wx + uy * wy);
-      if (fl_[p] & kConstrained) {
-        closed = true;
-        g = p;
-        break;
-      }
-      g = tw_[p];
-      if (g == kNone || g == e0) break;
-    }
-    if (!closed) continue;
-    const float c = static_cast<float>(std::cos(std::min(angle, std::numbers::pi)));
-    apex_cos_[v] = std::max(apex_cos_[v], c);
-    if (angle < std::numbers::pi / 3) {
-      const std::uint32_t s1 = input_segment(v, tv_[next_edge(e0)]);
-      const std::uint32_t s2 = input_segment(v, tv_[g]);
-      for (std::uint32_t sg : {s1, s2})
-        if (sg != kNone) seg_small_[sg] |= segs_[sg][0] == v ? 1 : 2;
-      // Mirrored splits only in the narrow wedges where cascades happen.
-      if (s1 != kNone && s2 != kNone && s1 != s2 && angle < kWedgeAngle * std::numbers::pi / 180) {
-        auto add = [&](std::uint32_t x, std::uint32_t y) {
-          auto& slot = partners_[2 * x + (segs_[x][0] == v ? 0 : 1)];
-          if (slot[0] == kNone) slot[0] = y;
-          else if (slot[1] == kNone && slot[0] != y) slot[1] = y;
-        };
-        add(s1, s2);
-        add(s2, s1);
-        seg_spike_[s1] |= kSpikeSeg;
-        seg_spike_[s2] |= kSpikeSeg;
-      }
+  if (scan_threads_ > 1) {  // setup_scan.cpp: the same sectors, in the same order
+    std::vector<Sector> sectors;
+    sectors_in_parallel(sectors);
+    for (const Sector& s : sectors) note_sector(s);
+  } else {
+    for (HalfEdgeId e0 = 0; e0 < tv_.size(); ++e0) {
+      Sector s{e0, kNone, 0};
+      if (sector_at(s)) note_sector(s);
     }
   }
   mark_spikes();
+}
+
+// The sector from constrained out-edge s.e0 of an input vertex: its angle
+// and its closing edge s.g; false when s.e0 is no such edge or the sector
+// does not close (the hull).
+bool Refiner::sector_at(Sector& s) const {
+  const HalfEdgeId e0 = s.e0;
+  const VertexId v = tv_[e0];
+  if (v >= n_input_ || !(fl_[e0] & kConstrained)) return false;
+  const Point& A = pts_[v];
+  double angle = 0;
+  HalfEdgeId g = e0;
+  bool closed = false;
+  for (std::size_t guard = 0; guard < 1u << 20; ++guard) {
+    const HalfEdgeId p = prev_edge(g);  // y -> v, the corner's other edge
+    const Point& X = pts_[tv_[next_edge(g)]];
+    const Point& Y = pts_[tv_[p]];
+    const double ux = X.x - A.x, uy = X.y - A.y, wx = Y.x - A.x, wy = Y.y - A.y;
+    angle += std::atan2(std::fabs(ux * wy - uy * wx), ux * wx + uy * wy);
+    if (fl_[p] & kConstrained) {
+      closed = true;
+      g = p;
+      break;
+    }
+    g = tw_[p];
+    if (g == kNone || g == e0) break;
+  }
+  s.g = g;
+  s.angle = angle;
+  return closed;
+}
+
+// What a closed sector tells: its apex's smallest angle, and for angles
+// below 60 degrees the small-angle marks of its two segments.
+void Refiner::note_sector(const Sector& s) {
+  const HalfEdgeId e0 = s.e0, g = s.g;
+  const VertexId v = tv_[e0];
+  const double angle = s.angle;
+  const float c = static_cast<float>(std::cos(std::min(angle, std::numbers::pi)));
+  apex_cos_[v] = std::max(apex_cos_[v], c);
+  if (angle < std::numbers::pi / 3) {
+    const std::uint32_t s1 = input_segment(v, tv_[next_edge(e0)]);
+    const std::uint32_t s2 = input_segment(v, tv_[g]);
+    for (std::uint32_t sg : {s1, s2})
+      if (sg != kNone) seg_small_[sg] |= segs_[sg][0] == v ? 1 : 2;
+    // Mirrored splits only in the narrow wedges where cascades happen.
+    if (s1 != kNone && s2 != kNone && s1 != s2 && angle < kWedgeAngle * std::numbers::pi / 180) {
+      auto add = [&](std::uint32_t x, std::uint32_t y) {
+        auto& slot = partners_[2 * x + (segs_[x][0] == v ? 0 : 1)];
+        if (slot[0] == kNone) slot[0] = y;
+        else if (slot[1] == kNone && slot[0] != y) slot[1] = y;
+      };
+      add(s1, s2);
+      add(s2, s1);
+      seg_spike_[s1] |= kSpikeSeg;
+      seg_spike_[s2] |= kSpikeSeg;
+    }
+  }
 }
 
 // Spike sides: from the sides of the narrow wedges, along chains of
