@@ -289,6 +289,9 @@ bool Refiner::score_local(const Point& c, double min2, int best_bad, double best
 // midpoint) makes a triangle with PQ within the bound: the angles at P and Q,
 // then at the new vertex (sine rule). tan_a: tan of the bound.
 static bool in_petal(double tan_a, double sin2_bound, double y, double s) {
+  // Nearer to P or Q than |PQ|: refused by score_local() (a new edge shorter
+  // than PQ) whatever the mesh, so not scored at all.
+  if (y * y + (0.5 + s) * (0.5 + s) < 0.999 || y * y + (0.5 - s) * (0.5 - s) < 0.999) return false;
   if (y < tan_a * (0.5 + s) || y < tan_a * (0.5 - s)) return false;
   const double a2 = (0.5 + s) * (0.5 + s) + y * y, b2 = (0.5 - s) * (0.5 - s) + y * y;
   return !(y * y * std::min({1.0, a2, b2}) < sin2_bound * a2 * b2);
