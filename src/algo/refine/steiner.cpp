@@ -298,16 +298,22 @@ static bool in_petal(double tan_a, double sin2_bound, double y, double s) {
 }
 
 // What best_point() needs of the bound, computed once per bound: the petal's
-// disc and the coarse grid of grid_point(), its cells inside the petal in
-// grid_point()'s order. The order matters: exact ties in the distance to the
-// nearest vertex are common (mirror-image candidates), and the first of equal
-// candidates wins. Scoring the cells most likely to win first (measured)
-// saved 3% of the instructions but changed 0.05% of the triangles.
+// disc and a coarse grid, its cells inside the petal in grid_point()'s order.
+// The order matters: exact ties in the distance to the nearest vertex are
+// common (mirror-image candidates), and the first of equal candidates wins.
+// Scoring the cells most likely to win first (measured) saved 3% of the
+// instructions but changed 0.05% of the triangles.
+// The grid is grid_point()'s without its two lowest rows (heights 0.87 and
+// 1.0 |PQ|): those points leave fewer skinny triangles but small ones, and
+// the refinement then needs more points. Without them the reference set
+// (docs/benchmarks.md) has 1.4% (q30) to 1.7% (q33) fewer triangles and the
+// search scores about a fifth fewer candidates; the pattern search still
+// reaches below 1.15 |PQ| from a winner on the lowest row.
 void Refiner::prepare_grid() {
   grid_tan_ = std::tan(bound_rad_);
   grid_half_cot_ = 0.5 / std::tan(bound_rad_);
   grid_disc_ = 0.5 / std::sin(bound_rad_);
-  static constexpr double kHeights[] = {0.87, 1.0, 1.15, 1.3, 1.5, 1.75, 2.0};
+  static constexpr double kHeights[] = {1.15, 1.3, 1.5, 1.75, 2.0};
   static constexpr double kShifts[] = {0.0, -0.25, 0.25, -0.5, 0.5, -0.75, 0.75, -1.0, 1.0};
   grid_cells_.clear();
   for (const double y : kHeights)
