@@ -65,6 +65,20 @@ inline FlipQuad flip_quad(const HalfEdgeId* tw, HalfEdgeId e) {
   return {e, e - ie + kNextIndex[ie], e - ie + kPrevIndex[ie], f, f - jf + kNextIndex[jf], f - jf + kPrevIndex[jf]};
 }
 
+// Per-half-edge data across the flip of q (flip_arrays below): the outer
+// edges' data moves with them, the new edge gets none. Any per-half-edge
+// array kept beside a mesh's (a CDT builder's segment ids) goes through it.
+template <class T>
+inline void carry_flip(T* data, const FlipQuad& q) {
+  const T bc = data[q.e1], ca = data[q.e2], ad = data[q.f1], db = data[q.f2];
+  data[q.e] = ca;
+  data[q.e1] = ad;
+  data[q.e2] = 0;
+  data[q.f] = db;
+  data[q.f1] = bc;
+  data[q.f2] = 0;
+}
+
 // Flips the edge of half-edge e = (a, b) between (a, b, c) and (b, a, d)
 // into (c, d): e's slot becomes (c, a, d), its twin's (d, b, c); both keep
 // their slots. Flags and markers move with the edges they belong to; the
@@ -97,19 +111,10 @@ inline HalfEdgeId flip_arrays(const MeshArrays& m, const FlipQuad& q) {
   relink(f1, tw_bc);
   tw[e2] = f2;
   tw[f2] = e2;
-  auto carry = [&](auto* data) {  // the outer edges' data moves with them; cd gets none
-    const auto bc = data[e1], ca = data[e2], ad = data[f1], db = data[f2];
-    data[e0] = ca;
-    data[e1] = ad;
-    data[e2] = 0;
-    data[f0] = db;
-    data[f1] = bc;
-    data[f2] = 0;
-  };
   if constexpr ((Carry & kCarryFlags) != 0)
-    if (m.flags) carry(m.flags);
+    if (m.flags) carry_flip(m.flags, q);
   if constexpr ((Carry & kCarryMarkers) != 0)
-    if (m.markers) carry(m.markers);
+    if (m.markers) carry_flip(m.markers, q);
   if constexpr ((Carry & kCarryOutEdges) != 0) {
     // Each vertex's out-edge keeps pointing at an edge that plays its role.
     HalfEdgeId* const ve = m.out;
