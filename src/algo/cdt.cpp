@@ -366,17 +366,23 @@ void CdtBuilder::finish() {
     out.clear();
     return;
   }
-  // (markers imply ids_: seg_of_ holds segment indices)
-  out.assign(tv_.size(), 0);
+  // (markers imply ids_: seg_of_ holds segment indices.) Indices -> markers
+  // in place, then the array becomes the mesh's: no second array to fill.
+  seg_of_.resize(tv_.size(), 0);
   bool any_marker = false, any_constrained = false;
   for (HalfEdgeId e = 0; e < tv_.size(); ++e) {
     if (tv_[e - e % 3] != kNone && (flags_[e] & kConstrained)) {
-      out[e] = pslg_.segments[static_cast<std::size_t>(seg_of_[e])].marker;
-      any_marker = any_marker || out[e] != 0;
+      seg_of_[e] = pslg_.segments[static_cast<std::size_t>(seg_of_[e])].marker;
+      any_marker = any_marker || seg_of_[e] != 0;
       any_constrained = true;
+    } else {
+      seg_of_[e] = 0;
     }
   }
-  if (!any_marker) out.clear();
+  out.clear();
+  if (any_marker) out.swap(seg_of_);
+  ids_ = false;  // no indices are left
+  inserter_.carry(nullptr);
   if (!any_constrained) flags_.clear();
 }
 

@@ -35,7 +35,8 @@ class CdtBuilder {
 
   // Inserts input segment `index` between (already merged) vertices a != b.
   void insert_segment(VertexId a, VertexId b, std::uint32_t index);
-  // Indices -> the mesh's markers (none when every marker is 0).
+  // Indices -> the mesh's markers (none when every marker is 0); the
+  // indices are gone afterwards.
   void finish();
   // The segment of constrained half-edge e (0 when indices are not kept).
   std::uint32_t segment_of(HalfEdgeId e) const { return seg_id(e); }
@@ -112,11 +113,14 @@ class CdtBuilder {
   std::vector<std::uint8_t>& flags_;
   std::vector<int> seg_of_;  // per half-edge: the segment index of a constrained edge (when ids_)
   bool ids_ = false;
-  // A flip through the Mesh (its counts kept) that carries seg_of_ too.
+  // A recovery flip (Ct, Lawson, Lifting) on the raw arrays, carrying
+  // seg_of_ as the markers slot. Both triangles are real (the recovery
+  // methods flip only inside a segment's cavity), so the mesh's live
+  // triangle count stays as it is.
   void flip(HalfEdgeId e) {
-    const FlipQuad q = flip_quad(tw_.data(), e);
-    mesh_.flip(e);
-    if (ids_) carry_flip(seg_of_.data(), q);
+    MeshArrays arrays = MeshArrays::of(mesh_);
+    arrays.markers = ids_ ? seg_of_.data() : nullptr;
+    flip_arrays<kCarryAll>(arrays, e);
   }
   std::uint32_t seg_id(HalfEdgeId e) const { return ids_ ? static_cast<std::uint32_t>(seg_of_[e]) : 0; }
   std::vector<HalfEdgeId>& ve_;

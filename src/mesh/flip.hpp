@@ -70,13 +70,15 @@ inline FlipQuad flip_quad(const HalfEdgeId* tw, HalfEdgeId e) {
 // array kept beside a mesh's (a CDT builder's segment ids) goes through it.
 template <class T>
 inline void carry_flip(T* data, const FlipQuad& q) {
-  const T bc = data[q.e1], ca = data[q.e2], ad = data[q.f1], db = data[q.f2];
-  data[q.e] = ca;
-  data[q.e1] = ad;
-  data[q.e2] = 0;
-  data[q.f] = db;
-  data[q.f1] = bc;
-  data[q.f2] = 0;
+  // (Indices copied first: stores through a byte array may alias q.)
+  const HalfEdgeId e0 = q.e, e1 = q.e1, e2 = q.e2, f0 = q.f, f1 = q.f1, f2 = q.f2;
+  const T bc = data[e1], ca = data[e2], ad = data[f1], db = data[f2];
+  data[e0] = ca;
+  data[e1] = ad;
+  data[e2] = 0;
+  data[f0] = db;
+  data[f1] = bc;
+  data[f2] = 0;
 }
 
 // Flips the edge of half-edge e = (a, b) between (a, b, c) and (b, a, d)
@@ -111,10 +113,11 @@ inline HalfEdgeId flip_arrays(const MeshArrays& m, const FlipQuad& q) {
   relink(f1, tw_bc);
   tw[e2] = f2;
   tw[f2] = e2;
+  const FlipQuad local{e0, e1, e2, f0, f1, f2};  // (q itself may alias the stores above)
   if constexpr ((Carry & kCarryFlags) != 0)
-    if (m.flags) carry_flip(m.flags, q);
+    if (m.flags) carry_flip(m.flags, local);
   if constexpr ((Carry & kCarryMarkers) != 0)
-    if (m.markers) carry_flip(m.markers, q);
+    if (m.markers) carry_flip(m.markers, local);
   if constexpr ((Carry & kCarryOutEdges) != 0) {
     // Each vertex's out-edge keeps pointing at an edge that plays its role.
     HalfEdgeId* const ve = m.out;
