@@ -369,14 +369,18 @@ void CdtBuilder::finish() {
   // (markers imply ids_: seg_of_ holds segment indices.) Indices -> markers
   // in place, then the array becomes the mesh's: no second array to fill.
   seg_of_.resize(tv_.size(), 0);
+  int* const ids = seg_of_.data();
+  const VertexId* const tv = tv_.data();
+  const std::uint8_t* const flags = flags_.data();
+  const Segment* const segments = pslg_.segments.data();
   bool any_marker = false, any_constrained = false;
-  for (HalfEdgeId e = 0; e < tv_.size(); ++e) {
-    if (tv_[e - e % 3] != kNone && (flags_[e] & kConstrained)) {
-      seg_of_[e] = pslg_.segments[static_cast<std::size_t>(seg_of_[e])].marker;
-      any_marker = any_marker || seg_of_[e] != 0;
+  for (HalfEdgeId e = 0, end = static_cast<HalfEdgeId>(tv_.size()); e < end; ++e) {
+    if (tv[e - e % 3] != kNone && (flags[e] & kConstrained)) {
+      ids[e] = segments[ids[e]].marker;
+      any_marker = any_marker || ids[e] != 0;
       any_constrained = true;
     } else {
-      seg_of_[e] = 0;
+      ids[e] = 0;
     }
   }
   out.clear();
