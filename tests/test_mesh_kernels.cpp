@@ -1,8 +1,10 @@
 // The mesh layer's shared kernels (src/mesh): point location with each edge
 // order, the straight segment walk, constrained Lawson legalization, the
-// edge and vertex marker rules, and invariant failures typed as InternalError.
+// Bowyer-Watson cavity, the carry of per-half-edge data, the edge and vertex
+// marker rules, and invariant failures typed as InternalError.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <random>
 #include <vector>
 
@@ -12,6 +14,8 @@
 #include "deltamesh/mesh.hpp"
 #include "deltamesh/predicates.hpp"
 #include "deltamesh/validate.hpp"
+#include "algo/insertion.hpp"
+#include "mesh/cavity.hpp"
 #include "mesh/edge_rules.hpp"
 #include "mesh/legalize.hpp"
 #include "mesh/locate.hpp"
@@ -208,6 +212,86 @@ TEST(MeshKernels, LegalizationOnRawArraysMatchesTheMeshOperations) {
   EXPECT_EQ(deltamesh::detail::MeshEditor(a).edge_flags(), deltamesh::detail::MeshEditor(b).edge_flags());
   EXPECT_EQ(deltamesh::detail::MeshEditor(a).out_edges(), deltamesh::detail::MeshEditor(b).out_edges());
   EXPECT_TRUE(check(a).ok());
+}
+
+TEST(MeshKernels, AnArrayCarriedBesideTheMeshMovesLikeItsMarkers) {
+  // Delaunay insertions through DelaunayInserter carrying a copy of the
+  // markers (a CDT builder's segment ids): after splits and flips the copy
+  // equals the mesh's own markers, edge for edge.
+  DelaunayOptions opt;
+  opt.keep_ghosts = true;
+  Mesh m = delaunay(random_points(300, 5), opt);
+  std::vector<HalfEdgeId> segments;
+  for (HalfEdgeId e : m.edges()) segments.push_back(e);
+  for (std::size_t i = 0; i < segments.size(); i += 97) m.constrain_edge(segments[i], static_cast<int>(i + 1));
+  const VertexId sa = m.origin(segments[97]), sb = m.dest(segments[97]);
+  std::vector<int> carried = detail::MeshEditor(m).edge_markers();
+  detail::DelaunayInserter inserter(m, &carried);
+  std::size_t flips = 0;
+  for (const Point& p : random_points(200, 6)) {
+    inserter.insert_point(p, 0);
+    flips = inserter.flips();
+  }
+  // A point on a constrained edge splits it: both halves keep the marker.
+  const HalfEdgeId s = m.find_edge(sa, sb);  // (flips around it moved it to other slots)
+  ASSERT_NE(s, kNone);
+  ASSERT_EQ(m.edge_marker(s), 98);
+  const Point mid{0.5 * (m.point(m.origin(s)).x + m.point(m.dest(s)).x),
+                  0.5 * (m.point(m.origin(s)).y + m.point(m.dest(s)).y)};
+  inserter.insert_point(mid, tri_of(s));
+  EXPECT_GT(flips, 0u);
+  EXPECT_EQ(carried, detail::MeshEditor(m).edge_markers());
+  EXPECT_TRUE(check(m).ok());
+}
+
+TEST(MeshKernels, TheCavityIsEveryTriangleWhoseCircleHoldsThePointAndItsFanIsDelaunay) {
+  Mesh m = delaunay(random_points(400, 21));
+  detail::MeshEditor(m).edge_flags().assign(m.triangle_vertices().size(), 0);
+  for (const Point& p : random_points(20, 22)) {
+    const TriId seed = containing(m, p);
+    if (seed == kNone) continue;  // outside the hull
+    detail::CavitySet cavity;
+    std::vector<HalfEdgeId> stack{3 * seed + 2, 3 * seed + 1, 3 * seed};
+    std::vector<HalfEdgeId> boundary;
+    cavity.begin();
+    cavity.add(seed);
+    ASSERT_TRUE(detail::grow_cavity(detail::MeshArrays::of(m), p, cavity, stack,
+                                    [&](HalfEdgeId e) { boundary.push_back(e); }));
+    // Find: by brute force, the real triangles whose circumcircle holds p.
+    std::vector<TriId> expected;
+    for (TriId t = 0; t < m.num_triangle_slots(); ++t) {
+      const auto v = m.triangle(t);
+      if (m.is_real(t) && incircle(m.point(v[0]), m.point(v[1]), m.point(v[2]), p) > 0) expected.push_back(t);
+    }
+    std::vector<TriId> got = cavity.tris();
+    std::sort(got.begin(), got.end());
+    EXPECT_EQ(got, expected);
+    ASSERT_EQ(boundary.size(), got.size() + 2);  // a point inside: a closed fan
+    for (std::size_t i = 0; i < boundary.size(); ++i) {
+      EXPECT_GT(orient2d(m.point(m.origin(boundary[i])), m.point(m.dest(boundary[i])), p), 0);
+      EXPECT_EQ(m.dest(boundary[i]), m.origin(boundary[(i + 1) % boundary.size()]));  // counter-clockwise
+    }
+    // Commit: the fan into the cavity's slots and two new ones.
+    struct Edge {
+      VertexId a, b;
+      HalfEdgeId outer;
+    };
+    std::vector<Edge> edges;
+    for (HalfEdgeId e : boundary) edges.push_back({m.origin(e), m.dest(e), m.twin(e)});
+    const VertexId v = m.add_vertex(p);
+    std::vector<TriId> fan = cavity.tris();
+    while (fan.size() < edges.size()) fan.push_back(m.add_triangle(v, v, v));
+    detail::MeshEditor(m).edge_flags().resize(m.triangle_vertices().size(), 0);
+    const detail::MeshArrays a = detail::MeshArrays::of(m);
+    for (std::size_t i = 0; i < edges.size(); ++i) {
+      detail::write_fan_triangle<detail::kCarryFlags>(a, fan[i], v, edges[i].a, edges[i].b, edges[i].outer, 0, 0);
+      HalfEdgeId& out = detail::MeshEditor(m).out_edges()[edges[i].a];
+      if (cavity.contains(tri_of(out))) out = 3 * fan[i] + 1;  // (cavity: the old slots)
+    }
+    detail::link_spokes(a.tw, fan.data(), 0, fan.size(), /*closed=*/true);
+    detail::MeshEditor(m).out_edges()[v] = 3 * fan[0];
+    ASSERT_TRUE(check(m).ok()) << "after inserting (" << p.x << ", " << p.y << ")";
+  }
 }
 
 TEST(MeshKernels, EdgeAndVertexMarkerRules) {

@@ -63,7 +63,8 @@ std::uint64_t saturating_pairs(std::uint64_t s) {
 
 }  // namespace
 
-CdtBuilder::CdtBuilder(Mesh& mesh, const Pslg& pslg, const CdtOptions& options, CdtStats& stats, bool keep_ids)
+CdtBuilder::CdtBuilder(Mesh& mesh, const Pslg& pslg, const CdtOptions& options, CdtStats& stats,
+                       std::vector<int> segment_ids)
     : mesh_(mesh),
       pslg_(pslg),
       opt_(options),
@@ -72,18 +73,23 @@ CdtBuilder::CdtBuilder(Mesh& mesh, const Pslg& pslg, const CdtOptions& options, 
       tv_(detail::MeshEditor(mesh).triangle_vertices()),
       tw_(detail::MeshEditor(mesh).twins()),
       flags_(detail::MeshEditor(mesh).edge_flags()),
-      seg_of_(detail::MeshEditor(mesh).edge_markers()),
+      seg_of_(std::move(segment_ids)),
       ve_(detail::MeshEditor(mesh).out_edges()),
       inserter_(mesh) {
   // Both per-half-edge arrays exist from now on, so the mesh's topological
   // operations keep them in step.
   if (flags_.size() != tv_.size()) flags_.assign(tv_.size(), 0);
   // Segment indices are only needed to name crossing segments (strict) and
-  // to give edges their markers; without either the marker array stays
-  // empty and every constrained edge counts as segment 0.
+  // to give edges their markers; without either none are kept and every
+  // constrained edge counts as segment 0.
   for (const Segment& s : pslg.segments) ids_ = ids_ || s.marker != 0;
-  ids_ = ids_ || options.strict || keep_ids;
-  if (ids_ && seg_of_.size() != tv_.size()) seg_of_.assign(tv_.size(), 0);
+  ids_ = ids_ || options.strict || !seg_of_.empty();
+  if (ids_) {
+    if (seg_of_.size() != tv_.size()) seg_of_.assign(tv_.size(), 0);
+    inserter_.carry(&seg_of_);
+    // finish() writes the markers; until then the mesh carries none.
+    detail::MeshEditor(mesh).edge_markers().clear();
+  }
   max_steiner_ = static_cast<std::size_t>(saturating_pairs(pslg.segments.size())) + 16;
   // The static incircle filter's bound (incircle_fast): differences of
   // coordinates within the bounding box (crossing vertices lie inside it).
@@ -355,22 +361,32 @@ void CdtBuilder::release(HalfEdgeId cd) {
 void CdtBuilder::finish() {
   bool markers = false;
   for (const Segment& s : pslg_.segments) markers = markers || s.marker != 0;
+  std::vector<int>& out = detail::MeshEditor(mesh_).edge_markers();
   if (!markers) {  // every constrained edge gets marker 0: no marker array
-    seg_of_.clear();
+    out.clear();
     return;
   }
-  // (markers imply ids_: seg_of_ holds segment indices)
+  // (markers imply ids_: seg_of_ holds segment indices.) Indices -> markers
+  // in place, then the array becomes the mesh's: no second array to fill.
+  seg_of_.resize(tv_.size(), 0);
+  int* const ids = seg_of_.data();
+  const VertexId* const tv = tv_.data();
+  const std::uint8_t* const flags = flags_.data();
+  const Segment* const segments = pslg_.segments.data();
   bool any_marker = false, any_constrained = false;
-  for (HalfEdgeId e = 0; e < tv_.size(); ++e) {
-    if (tv_[e - e % 3] != kNone && (flags_[e] & kConstrained)) {
-      seg_of_[e] = pslg_.segments[static_cast<std::size_t>(seg_of_[e])].marker;
-      any_marker = any_marker || seg_of_[e] != 0;
+  for (HalfEdgeId e = 0, end = static_cast<HalfEdgeId>(tv_.size()); e < end; ++e) {
+    if (tv[e - e % 3] != kNone && (flags[e] & kConstrained)) {
+      ids[e] = segments[ids[e]].marker;
+      any_marker = any_marker || ids[e] != 0;
       any_constrained = true;
     } else {
-      seg_of_[e] = 0;
+      ids[e] = 0;
     }
   }
-  if (!any_marker) seg_of_.clear();
+  out.clear();
+  if (any_marker) out.swap(seg_of_);
+  ids_ = false;  // no indices are left
+  inserter_.carry(nullptr);
   if (!any_constrained) flags_.clear();
 }
 

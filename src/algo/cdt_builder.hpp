@@ -18,20 +18,28 @@
 
 namespace deltamesh::detail {
 
-// While segments are inserted, the marker slot of a constrained half-edge
-// holds the index of the input segment it belongs to (flips and splits carry
-// markers along, so the mapping edge -> segment costs nothing to maintain);
-// finish() replaces the indices by the segments' markers.
+// While segments are inserted, the builder's own per-half-edge array holds,
+// for a constrained half-edge, the index of the input segment it belongs to.
+// It is carried through every split and flip exactly as the mesh's markers
+// are (the same carry kernels, mesh/flip.hpp and mesh/split.hpp), so the
+// mapping edge -> segment costs nothing to maintain, and the mesh's marker
+// array only ever holds markers: finish() writes them from the indices.
 class CdtBuilder {
  public:
-  // keep_ids: the marker array holds segment indices even when no segment
-  // has a marker (insert_segments reads them before finish()).
-  CdtBuilder(Mesh& mesh, const Pslg& pslg, const CdtOptions& options, CdtStats& stats, bool keep_ids = false);
+  // segment_ids: when not empty, one per half-edge of the mesh, the index of
+  // the segment of each constrained edge; the builder then keeps indices
+  // even when no segment has a marker (insert_segments reads them before
+  // finish(), through segment_of()).
+  CdtBuilder(Mesh& mesh, const Pslg& pslg, const CdtOptions& options, CdtStats& stats,
+             std::vector<int> segment_ids = {});
 
   // Inserts input segment `index` between (already merged) vertices a != b.
   void insert_segment(VertexId a, VertexId b, std::uint32_t index);
-  // Indices -> markers; clears the marker array when every marker is 0.
+  // Indices -> the mesh's markers (none when every marker is 0); the
+  // indices are gone afterwards.
   void finish();
+  // The segment of constrained half-edge e (0 when indices are not kept).
+  std::uint32_t segment_of(HalfEdgeId e) const { return seg_id(e); }
 
   // Inserts vertex v (in the mesh's points, in no triangle) by Delaunay
   // insertion that keeps constrained edges, locating it by a walk from the
@@ -103,8 +111,17 @@ class CdtBuilder {
   std::vector<VertexId>& tv_;
   std::vector<HalfEdgeId>& tw_;
   std::vector<std::uint8_t>& flags_;
-  std::vector<int>& seg_of_;  // the mesh's marker array, holding segment indices for now (when ids_)
+  std::vector<int> seg_of_;  // per half-edge: the segment index of a constrained edge (when ids_)
   bool ids_ = false;
+  // A recovery flip (Ct, Lawson, Lifting) on the raw arrays, carrying
+  // seg_of_ as the markers slot. Both triangles are real (the recovery
+  // methods flip only inside a segment's cavity), so the mesh's live
+  // triangle count stays as it is.
+  void flip(HalfEdgeId e) {
+    MeshArrays arrays = MeshArrays::of(mesh_);
+    arrays.markers = ids_ ? seg_of_.data() : nullptr;
+    flip_arrays<kCarryAll>(arrays, e);
+  }
   std::uint32_t seg_id(HalfEdgeId e) const { return ids_ ? static_cast<std::uint32_t>(seg_of_[e]) : 0; }
   std::vector<HalfEdgeId>& ve_;
   DelaunayInserter inserter_;

@@ -220,7 +220,6 @@ bool chain_order_cdt(Mesh& mesh, const Pslg& pslg, const CdtOptions& options, Cd
   detail::MeshEditor(mesh).out_edges().assign(n, kNone);
   mesh.reserve(n, 2 * n + 2);
   detail::MeshEditor(mesh).edge_flags().reserve(6 * n + 6);
-  detail::MeshEditor(mesh).edge_markers().reserve(6 * n + 6);
   VertexId v0 = order[0], v1 = order[i1], v2 = order[i2];
   if (orient2d(pts[v0], pts[v1], pts[v2]) < 0) std::swap(v1, v2);
   make_first_triangle(mesh, v0, v1, v2);

@@ -337,7 +337,7 @@ void CdtBuilder::recover_flips(VertexId a, VertexId b, std::uint32_t seg, bool l
       continue;
     }
     failures = 0;
-    mesh_.flip(e);
+    flip(e);
     if (TraceObserver* o = mesh_.trace()) [[unlikely]] TraceAccess::flip_at(*o, TraceReason::Recovery, tv_.data(), e, f);
     ++st_.flips;
     flipped_.insert(edge_key(u, v));
@@ -361,7 +361,9 @@ void CdtBuilder::recover_flips(VertexId a, VertexId b, std::uint32_t seg, bool l
 // pushed is locally Delaunay. A flip pushes the four edges around it, so
 // an edge that changes neighbours is always looked at again.
 void CdtBuilder::lawson_flips(std::vector<HalfEdgeId>& stack) {
-  auto topo = lawson_topology(mesh_);
+  MeshArrays arrays = MeshArrays::of(mesh_);
+  arrays.markers = ids_ ? seg_of_.data() : nullptr;
+  RawTopology<kCarryAll> topo(arrays);
   st_.flips += constrained_lawson(topo, stack);
 }
 
@@ -484,7 +486,7 @@ void CdtBuilder::recover_lifting(VertexId a, VertexId b, std::uint32_t seg) {
       ok = false;
       break;
     }
-    mesh_.flip(e);  // e's slot becomes (p, x, q), f's (q, y, p)
+    flip(e);  // e's slot becomes (p, x, q), f's (q, y, p)
     if (TraceObserver* o = mesh_.trace()) [[unlikely]] TraceAccess::flip_at(*o, TraceReason::Lifting, tv_.data(), e, f);
     ++st_.flips;
     consider(prev_edge(e));  // the new edge q -> p

@@ -289,7 +289,7 @@ void insert_segments(Mesh& mesh, std::span<const Segment> segments, const Insert
         if (marker != 0 || !mesh.is_constrained(chains[k])) mesh.constrain_edge(chains[k], marker);
     }
   } else {
-    // Work list of segments for the builder, whose marker slots hold indices
+    // Work list of segments for the builder, whose segment ids are indices
     // into it: the given segments, the mesh's constrained edges, then the
     // boundary edges that are not (constrained only while filler is there).
     const std::size_t k = segments.size();
@@ -299,9 +299,8 @@ void insert_segments(Mesh& mesh, std::span<const Segment> segments, const Insert
     work.points.assign(mesh.points().begin(), mesh.points().end());
     work.segments.assign(segments.begin(), segments.end());
     std::vector<std::uint8_t>& flags = detail::MeshEditor(cm).edge_flags();
-    std::vector<int>& ids = detail::MeshEditor(cm).edge_markers();
+    std::vector<int> ids(cm.triangle_vertices().size(), 0);  // the builder's, per half-edge
     flags.assign(cm.triangle_vertices().size(), 0);
-    ids.assign(cm.triangle_vertices().size(), 0);
     auto constrain = [&](HalfEdgeId e, std::size_t index) {
       for (const HalfEdgeId h : {e, cm.twin(e)}) {
         flags[h] |= kConstrained;
@@ -333,7 +332,7 @@ void insert_segments(Mesh& mesh, std::span<const Segment> segments, const Insert
     copt.method = options.method;
     copt.strict = options.strict;
     {
-      detail::CdtBuilder builder(cm, work, copt, st.cdt, /*keep_ids=*/true);
+      detail::CdtBuilder builder(cm, work, copt, st.cdt, std::move(ids));
       for (std::size_t i = 0; i < k; ++i) {
         const Segment& s = segments[i];
         if (s.a == s.b) continue;
@@ -354,7 +353,7 @@ void insert_segments(Mesh& mesh, std::span<const Segment> segments, const Insert
       // before finish() turns indices into markers).
       std::vector<HalfEdgeId> release;
       for (HalfEdgeId e = 0; e < flags.size(); ++e)
-        if ((flags[e] & kConstrained) && static_cast<std::size_t>(ids[e]) >= fill_base) release.push_back(e);
+        if ((flags[e] & kConstrained) && builder.segment_of(e) >= fill_base) release.push_back(e);
       builder.finish();
       for (HalfEdgeId e : release) {
         detail::MeshEditor(cm).edge_flags()[e] &= static_cast<std::uint8_t>(~kConstrained);

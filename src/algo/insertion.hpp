@@ -7,6 +7,7 @@
 
 #include "deltamesh/mesh.hpp"
 #include "mesh/legalize.hpp"
+#include "mesh/split.hpp"
 
 namespace deltamesh::detail {
 
@@ -17,7 +18,12 @@ class DelaunayInserter {
     TriId tri;        // a triangle incident to `vertex` (a good next hint)
   };
 
-  explicit DelaunayInserter(Mesh& mesh) : mesh_(mesh) { stack_.reserve(64); }
+  // `carried`, when given, is a per-half-edge array kept beside the mesh's
+  // (a CDT builder's segment ids): grown with the triangle slots, and carried
+  // through every split and flip as the mesh's markers are.
+  explicit DelaunayInserter(Mesh& mesh, std::vector<int>* carried = nullptr) : mesh_(mesh), carried_(carried) {
+    stack_.reserve(64);
+  }
 
   // Inserts vertex v, already in mesh.points() but in no triangle.
   Result insert_existing(VertexId v, TriId hint) {
@@ -57,6 +63,9 @@ class DelaunayInserter {
     return {v, tri_of(mesh_.out_edge(v))};
   }
 
+  // Starts (or stops, with null) carrying a per-half-edge array (above).
+  void carry(std::vector<int>* carried) { carried_ = carried; }
+
   // Flips made by the insertions so far.
   std::size_t flips() const { return flips_; }
 
@@ -77,6 +86,10 @@ class DelaunayInserter {
  private:
   void insert_in_triangle(TriId t, VertexId v) {
     const HalfEdgeId r = mesh_.split_triangle(t, v);  // v -> first vertex, in slot t
+    if (carried_) {
+      carried_->resize(mesh_.triangle_vertices().size(), 0);
+      carry_split_triangle(carried_->data(), t, tri_of(mesh_.twin(r - 1)), tri_of(mesh_.twin(r)));
+    }
     if (TraceObserver* o = mesh_.trace()) [[unlikely]]
       TraceAccess::slots(*o, trace_insert(v, mesh_.point(v)), mesh_.triangle_vertices().data(),
                          {t, tri_of(mesh_.twin(r - 1)), tri_of(mesh_.twin(r))});
@@ -88,6 +101,11 @@ class DelaunayInserter {
   void insert_on_edge(HalfEdgeId e, VertexId v, TraceReason why = TraceReason::Delaunay) {
     const HalfEdgeId f = mesh_.twin(e);
     const HalfEdgeId g0 = mesh_.split_edge(e, v);
+    if (carried_) {
+      carried_->resize(mesh_.triangle_vertices().size(), 0);
+      carry_split_edge_side(carried_->data(), e, next_edge(e), tri_of(g0));
+      if (f != kNone) carry_split_edge_side(carried_->data(), f, next_edge(f), tri_of(mesh_.twin(e)));
+    }
     if (TraceObserver* o = mesh_.trace()) [[unlikely]] {
       const TriId t = tri_of(e), t3 = tri_of(g0);
       const VertexId* tv = mesh_.triangle_vertices().data();
@@ -105,11 +123,12 @@ class DelaunayInserter {
   }
 
   void legalize(VertexId v) {
-    MeshTopology topo(mesh_);
+    MeshTopology topo(mesh_, carried_ ? carried_->data() : nullptr);
     flips_ += legalize_around_vertex(topo, v, stack_).flips;
   }
 
   Mesh& mesh_;
+  std::vector<int>* carried_;
   std::vector<HalfEdgeId> stack_;
   std::size_t flips_ = 0;
 };

@@ -65,6 +65,22 @@ inline FlipQuad flip_quad(const HalfEdgeId* tw, HalfEdgeId e) {
   return {e, e - ie + kNextIndex[ie], e - ie + kPrevIndex[ie], f, f - jf + kNextIndex[jf], f - jf + kPrevIndex[jf]};
 }
 
+// Per-half-edge data across the flip of q (flip_arrays below): the outer
+// edges' data moves with them, the new edge gets none. Any per-half-edge
+// array kept beside a mesh's (a CDT builder's segment ids) goes through it.
+template <class T>
+inline void carry_flip(T* data, const FlipQuad& q) {
+  // (Indices copied first: stores through a byte array may alias q.)
+  const HalfEdgeId e0 = q.e, e1 = q.e1, e2 = q.e2, f0 = q.f, f1 = q.f1, f2 = q.f2;
+  const T bc = data[e1], ca = data[e2], ad = data[f1], db = data[f2];
+  data[e0] = ca;
+  data[e1] = ad;
+  data[e2] = 0;
+  data[f0] = db;
+  data[f1] = bc;
+  data[f2] = 0;
+}
+
 // Flips the edge of half-edge e = (a, b) between (a, b, c) and (b, a, d)
 // into (c, d): e's slot becomes (c, a, d), its twin's (d, b, c); both keep
 // their slots. Flags and markers move with the edges they belong to; the
@@ -97,19 +113,11 @@ inline HalfEdgeId flip_arrays(const MeshArrays& m, const FlipQuad& q) {
   relink(f1, tw_bc);
   tw[e2] = f2;
   tw[f2] = e2;
-  auto carry = [&](auto* data) {  // the outer edges' data moves with them; cd gets none
-    const auto bc = data[e1], ca = data[e2], ad = data[f1], db = data[f2];
-    data[e0] = ca;
-    data[e1] = ad;
-    data[e2] = 0;
-    data[f0] = db;
-    data[f1] = bc;
-    data[f2] = 0;
-  };
+  const FlipQuad local{e0, e1, e2, f0, f1, f2};  // (q itself may alias the stores above)
   if constexpr ((Carry & kCarryFlags) != 0)
-    if (m.flags) carry(m.flags);
+    if (m.flags) carry_flip(m.flags, local);
   if constexpr ((Carry & kCarryMarkers) != 0)
-    if (m.markers) carry(m.markers);
+    if (m.markers) carry_flip(m.markers, local);
   if constexpr ((Carry & kCarryOutEdges) != 0) {
     // Each vertex's out-edge keeps pointing at an edge that plays its role.
     HalfEdgeId* const ve = m.out;

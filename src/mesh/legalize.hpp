@@ -27,9 +27,11 @@ struct ExactIncircle {
 };
 
 // A Mesh through its public operations (flip keeps its live-triangle count).
+// `carried`, when given, is a per-half-edge array kept beside the mesh's
+// (a CDT builder's segment ids): flips carry it as they carry markers.
 class MeshTopology {
  public:
-  explicit MeshTopology(Mesh& m) : m_(m) {}
+  explicit MeshTopology(Mesh& m, int* carried = nullptr) : m_(m), carried_(carried) {}
   VertexId origin(HalfEdgeId e) const { return m_.origin(e); }
   HalfEdgeId twin(HalfEdgeId e) const { return m_.twin(e); }
   const Point& point(VertexId v) const { return m_.point(v); }
@@ -43,12 +45,14 @@ class MeshTopology {
   }
   void flip(const FlipQuad& q, TraceReason why) {
     m_.flip(q.e);
+    if (carried_) carry_flip(carried_, q);
     if (TraceObserver* t = m_.trace()) [[unlikely]]
       TraceAccess::flip(*t, why, m_.triangle_vertices().data(), q);
   }
 
  private:
   Mesh& m_;
+  int* carried_;
 };
 
 // Raw arrays of a mesh. Carry says which optional arrays flips keep

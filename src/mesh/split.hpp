@@ -8,6 +8,28 @@
 
 namespace deltamesh::detail {
 
+// Per-half-edge data across the splits below (carry_flip's counterparts in
+// mesh/flip.hpp). A triangle split: bc and ca move to slots t1 and t2, the
+// new edges get none.
+template <class T>
+inline void carry_split_triangle(T* data, TriId t, TriId t1, TriId t2) {
+  const HalfEdgeId e1 = 3 * t + 1, e2 = 3 * t + 2, g0 = 3 * t1, h0 = 3 * t2;
+  data[g0] = data[e1];
+  data[h0] = data[e2];
+  data[e1] = data[e2] = data[g0 + 1] = data[g0 + 2] = data[h0 + 1] = data[h0 + 2] = 0;
+}
+
+// One side of an edge split: e = (a, b) and its next edge e1 in (a, b, c)
+// become (a, v, c) and (v, b, c) in slot t3; v -> b and b -> c keep e's and
+// e1's data, the edges to c get none.
+template <class T>
+inline void carry_split_edge_side(T* data, HalfEdgeId e, HalfEdgeId e1, TriId t3) {
+  const HalfEdgeId g0 = 3 * t3;
+  data[g0] = data[e];
+  data[g0 + 1] = data[e1];
+  data[e1] = data[g0 + 2] = 0;
+}
+
 // Triangle t = (a, b, c) split at v into (a, b, v) in t, (b, c, v) in slot
 // t1 and (c, a, v) in slot t2 (both allocated, contents overwritten). The
 // outer edges bc and ca keep their twins, flags and markers; the three new
@@ -37,15 +59,10 @@ inline HalfEdgeId split_triangle_arrays(const MeshArrays& m, TriId t, VertexId v
   tw[h0 + 2] = g0 + 1;
   tw[h0 + 1] = e2;
   tw[e2] = h0 + 1;
-  auto carry = [&](auto* data) {  // bc and ca move to the new slots
-    data[g0] = data[e1];
-    data[h0] = data[e2];
-    data[e1] = data[e2] = data[g0 + 1] = data[g0 + 2] = data[h0 + 1] = data[h0 + 2] = 0;
-  };
   if constexpr ((Carry & kCarryFlags) != 0)
-    if (m.flags) carry(m.flags);
+    if (m.flags) carry_split_triangle(m.flags, t, t1, t2);
   if constexpr ((Carry & kCarryMarkers) != 0)
-    if (m.markers) carry(m.markers);
+    if (m.markers) carry_split_triangle(m.markers, t, t1, t2);
   if constexpr ((Carry & kCarryOutEdges) != 0) {
     HalfEdgeId* const ve = m.out;
     if (b != kInfinite && ve[b] == e1) ve[b] = g0;
@@ -79,15 +96,10 @@ inline HalfEdgeId split_edge_arrays(const MeshArrays& m, HalfEdgeId e, VertexId 
   if ((Carry & kOpenTwins) == 0 || tw_bc != kNone) tw[tw_bc] = g0 + 1;
   tw[g0 + 2] = e1;
   tw[e1] = g0 + 2;
-  auto carry_first = [&](auto* data) {
-    data[g0] = data[e];
-    data[g0 + 1] = data[e1];
-    data[e1] = data[g0 + 2] = 0;
-  };
   if constexpr ((Carry & kCarryFlags) != 0)
-    if (m.flags) carry_first(m.flags);
+    if (m.flags) carry_split_edge_side(m.flags, e, e1, t3);
   if constexpr ((Carry & kCarryMarkers) != 0)
-    if (m.markers) carry_first(m.markers);
+    if (m.markers) carry_split_edge_side(m.markers, e, e1, t3);
   if constexpr ((Carry & kCarryOutEdges) != 0) {
     if (b != kInfinite && m.out[b] == e1) m.out[b] = g0 + 1;
     if (v != kInfinite) m.out[v] = g0;
@@ -114,15 +126,10 @@ inline HalfEdgeId split_edge_arrays(const MeshArrays& m, HalfEdgeId e, VertexId 
   tw[h0] = e;
   tw[g0] = f;
   tw[f] = g0;
-  auto carry_second = [&](auto* data) {
-    data[h0] = data[f];
-    data[h0 + 1] = data[f1];
-    data[f1] = data[h0 + 2] = 0;
-  };
   if constexpr ((Carry & kCarryFlags) != 0)
-    if (m.flags) carry_second(m.flags);
+    if (m.flags) carry_split_edge_side(m.flags, f, f1, t4);
   if constexpr ((Carry & kCarryMarkers) != 0)
-    if (m.markers) carry_second(m.markers);
+    if (m.markers) carry_split_edge_side(m.markers, f, f1, t4);
   if constexpr ((Carry & kCarryOutEdges) != 0)
     if (a != kInfinite && m.out[a] == f1) m.out[a] = h0 + 1;
   return g0;

@@ -1,10 +1,10 @@
-// Point location and Bowyer-Watson cavities of Delaunay refinement
-// (A. Bowyer, "Computing Dirichlet tessellations", and D. F. Watson,
-// "Computing the n-dimensional Delaunay tessellation", Comput. J. 1981).
-// The cavity of a point (the triangles whose circumcircle strictly contains
-// it, grown without crossing segments) is found read-only, so the same
-// search tells whether the point encroaches a segment (R2's rejection)
-// before anything changes; insert.cpp commits it.
+// Point location and Bowyer-Watson cavities of Delaunay refinement. The
+// cavity kernel (find and commit) is mesh/cavity.hpp; here are the parts
+// refinement adds: what a boundary edge records (its marker and the area
+// bound of the triangle inside), the cavities of segment splits (both sides
+// of the segment), and the visibility check. The cavity is found read-only,
+// so the same search tells whether the point encroaches a segment (R2's
+// rejection) before anything changes; insert.cpp commits it.
 #include <cmath>
 
 #include "algo/refine/refiner.hpp"
@@ -97,7 +97,7 @@ Refiner::Walk Refiner::walk(TriId t, const Point& c) const {
   return w;
 }
 
-void Refiner::record_boundary(HalfEdgeId e) {
+inline void Refiner::record_boundary(HalfEdgeId e) {
   BoundaryEdge b;
   b.a = tv_[e];
   b.b = tv_[next_edge(e)];
@@ -109,31 +109,10 @@ void Refiner::record_boundary(HalfEdgeId e) {
   bnd_.push_back(b);
 }
 
-// Depth-first growth of the cavity from the half-edges on stack_ until it
-// is empty; boundary edges are recorded in counter-clockwise order.
+// Growth of the cavity from the half-edges on stack_ (the mesh kernel);
+// boundary edges are recorded in counter-clockwise order.
 bool Refiner::grow(const Point& c) {
-  while (!stack_.empty()) {
-    const HalfEdgeId e = stack_.back();
-    stack_.pop_back();
-    const HalfEdgeId f = tw_[e];
-    if (f != kNone && !(fl_[e] & kConstrained)) {
-      const TriId u = tri_of(f);
-      const Point& pa = pts_[tv_[f]];
-      const Point& pb = pts_[tv_[next_edge(f)]];
-      const Point& pc = pts_[tv_[prev_edge(f)]];
-      if (incircle(pa, pb, pc, c) > 0) {
-        // The cavity's dual graph is a tree; meeting a triangle twice means
-        // the predicates and the mesh disagree: give up on this point.
-        if (in_cavity(u)) return false;
-        add_to_cavity(u);
-        stack_.push_back(prev_edge(f));
-        stack_.push_back(next_edge(f));
-        continue;
-      }
-    }
-    record_boundary(e);
-  }
-  return true;
+  return detail::grow_cavity(arrays(), c, cav_, stack_, [this](HalfEdgeId e) { record_boundary(e); });
 }
 
 bool Refiner::boundary_visible(const Point& c, std::size_t from, std::size_t to) const {

@@ -11,6 +11,10 @@
 
 namespace deltamesh::refinement {
 
+// The arrays a fan writes (mesh/cavity.hpp): flags always, markers when the
+// mesh has them.
+constexpr unsigned kFanCarry = detail::kCarryFlags | detail::kCarryMarkers;
+
 VertexId Refiner::new_vertex(const Point& p, std::uint32_t seg, int marker) {
   const auto v = static_cast<VertexId>(pts_.size());
   pts_.push_back(p);
@@ -87,27 +91,12 @@ void Refiner::insert_interior(const Point& c, TriId seed) {
     const HalfEdgeId oe = ve_[bnd_[i].a];
     if (oe == kNone || in_cavity(tri_of(oe))) ve_[bnd_[i].a] = 3 * fan_[i] + 1;
   }
-  for (std::size_t i = 0; i < n; ++i) {
-    const TriId t = fan_[i];
-    const HalfEdgeId e = 3 * t;
+  const detail::MeshArrays arrays = this->arrays();  // (after new_slot)
+  for (std::size_t i = 0; i < n; ++i) {  // a closed fan: v is inside the cavity
     const BoundaryEdge& b = bnd_[i];
-    tv_[e] = v;
-    tv_[e + 1] = b.a;
-    tv_[e + 2] = b.b;
-    tw_[e + 1] = b.outer;
-    if (b.outer != kNone) tw_[b.outer] = e + 1;
-    const HalfEdgeId nxt = 3 * fan_[i + 1 == n ? 0 : i + 1];
-    tw_[e + 2] = nxt;
-    tw_[nxt] = e + 2;
-    fl_[e] = 0;
-    fl_[e + 1] = b.flags;
-    fl_[e + 2] = 0;
-    if (has_markers_) {
-      mk_[e] = 0;
-      mk_[e + 1] = b.marker;
-      mk_[e + 2] = 0;
-    }
-    if (carry_bounds_) m_.set_triangle_area_bound(t, b.area_bound);
+    detail::write_fan_triangle<kFanCarry>(arrays, fan_[i], v, b.a, b.b, b.outer, b.flags, b.marker);
+    detail::link_spoke(arrays.tw, fan_[i], fan_[i + 1 == n ? 0 : i + 1]);
+    if (carry_bounds_) m_.set_triangle_area_bound(fan_[i], b.area_bound);
   }
   ve_[v] = 3 * fan_[0];
   carry_attributes();
@@ -159,34 +148,15 @@ bool Refiner::split_segment(HalfEdgeId e, const Point* at, int depth) {
     const HalfEdgeId oe = ve_[a];
     if (oe == kNone || in_cavity(tri_of(oe))) ve_[a] = 3 * fan_[n1 - 1] + 2;
   }
-  auto write = [&](std::size_t i) {
-    const TriId t = fan_[i];
-    const HalfEdgeId f = 3 * t;
+  const detail::MeshArrays arrays = this->arrays();  // (after new_slot)
+  for (std::size_t i = 0; i < n; ++i) {
     const BoundaryEdge& bd = bnd_[i];
-    tv_[f] = v;
-    tv_[f + 1] = bd.a;
-    tv_[f + 2] = bd.b;
-    tw_[f + 1] = bd.outer;
-    if (bd.outer != kNone) tw_[bd.outer] = f + 1;
-    fl_[f] = 0;
-    fl_[f + 1] = bd.flags;
-    fl_[f + 2] = 0;
-    if (has_markers_) {
-      mk_[f] = 0;
-      mk_[f + 1] = bd.marker;
-      mk_[f + 2] = 0;
-    }
-    if (carry_bounds_) m_.set_triangle_area_bound(t, bd.area_bound);
-  };
-  for (std::size_t i = 0; i < n; ++i) write(i);
-  auto chain = [&](std::size_t lo, std::size_t hi) {
-    for (std::size_t i = lo; i + 1 < hi; ++i) {
-      tw_[3 * fan_[i] + 2] = 3 * fan_[i + 1];
-      tw_[3 * fan_[i + 1]] = 3 * fan_[i] + 2;
-    }
-  };
-  chain(0, n1);
-  chain(n1, n);
+    detail::write_fan_triangle<kFanCarry>(arrays, fan_[i], v, bd.a, bd.b, bd.outer, bd.flags, bd.marker);
+    if (carry_bounds_) m_.set_triangle_area_bound(fan_[i], bd.area_bound);
+  }
+  // Two open fans, one per side of the segment, joined along it below.
+  detail::link_spokes(arrays.tw, fan_.data(), 0, n1, /*closed=*/false);
+  detail::link_spokes(arrays.tw, fan_.data(), n1, n, /*closed=*/false);
   auto seg_edge = [&](HalfEdgeId h) {
     fl_[h] = flags;
     if (has_markers_) mk_[h] = marker;

@@ -16,6 +16,7 @@
 #include "deltamesh/predicates.hpp"
 #include "deltamesh/progress.hpp"
 #include "deltamesh/refine.hpp"
+#include "mesh/cavity.hpp"
 #include "mesh/editor.hpp"
 #include "mesh/trace_hooks.hpp"
 
@@ -233,23 +234,21 @@ class Refiner {
   bool split_cavity(HalfEdgeId e, const Point& m);
   bool in_circumcircle(TriId t, const Point& p) const;
   bool grow(const Point& c);
-  void record_boundary(HalfEdgeId e);
+  inline void record_boundary(HalfEdgeId e);  // (inline: grow()'s callback, once per boundary edge)
   bool boundary_visible(const Point& c, std::size_t from, std::size_t to) const;
   void begin_cavity() {
-    cav_.clear();
+    cav_.begin();
     bnd_.clear();
     stack_.clear();
-    if (++cav_stamp_ == 0) {
-      std::fill(in_cav_.begin(), in_cav_.end(), 0);
-      cav_stamp_ = 1;
-    }
   }
-  void add_to_cavity(TriId t) {
-    if (t >= in_cav_.size()) in_cav_.resize(std::max<std::size_t>(t + 1, 2 * in_cav_.size()), 0);
-    in_cav_[t] = cav_stamp_;
-    cav_.push_back(t);
+  void add_to_cavity(TriId t) { cav_.add(t); }
+  bool in_cavity(TriId t) const { return cav_.contains(t); }
+  // The mesh's arrays for the cavity kernels (mesh/cavity.hpp): flags
+  // always, markers when the mesh has them.
+  detail::MeshArrays arrays() {
+    return {.tv = tv_.data(), .tw = tw_.data(), .flags = fl_.data(), .markers = has_markers_ ? mk_.data() : nullptr,
+            .out = ve_.data(), .pts = pts_.data()};
   }
-  bool in_cavity(TriId t) const { return t < in_cav_.size() && in_cav_[t] == cav_stamp_; }
 
   // ---- insert.cpp: mesh updates ------------------------------------------------
   VertexId new_vertex(const Point& p, std::uint32_t seg, int marker);
@@ -338,11 +337,7 @@ class Refiner {
   std::vector<Reason> why_;
 
   // Scratch, reused by every insertion.
-  std::vector<TriId> cav_;
-  // Cavity membership in O(1): in_cav_[t] == cav_stamp_ while t is in cav_
-  // (a huge cocircular cavity made the linear search quadratic).
-  std::vector<std::uint32_t> in_cav_;
-  std::uint32_t cav_stamp_ = 0;
+  detail::CavitySet cav_;
   std::vector<BoundaryEdge> bnd_;
   std::vector<HalfEdgeId> stack_;
   std::vector<TriId> fan_;

@@ -162,7 +162,7 @@ bool Refiner::gather_petal(TriId t, const Point& centre, double radius) {
   petal_.reserve(kMaxPetal);
   begin_cavity();  // the cavity stamp marks gathered triangles
   const std::size_t slots = tv_.size() / 3;
-  if (in_cav_.size() < slots) in_cav_.resize(slots, 0);
+  cav_.reserve_slots(slots);
   if (petal_index_.size() < slots) petal_index_.resize(slots);
   const auto circle = [&](TriId u, PetalTri& pt) {
     const Point& A = pts_[tv_[3 * u]];
@@ -185,8 +185,7 @@ bool Refiner::gather_petal(TriId t, const Point& centre, double radius) {
     return dx * dx + dy * dy < s * s;
   };
   const auto add = [&](TriId u, const PetalTri& pt) {
-    in_cav_[u] = cav_stamp_;
-    cav_.push_back(u);
+    cav_.add_reserved(u);
     petal_index_[u] = static_cast<std::uint32_t>(petal_.size());
     PetalTri& q = petal_.emplace_back(pt);
     for (int k = 0; k < 3; ++k) q.p[k] = pts_[tv_[3 * u + k]];
