@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "algo/delaunay_parallel.hpp"
+#include "algo/refine_parallel.hpp"
 #include "deltamesh-gen/generators.hpp"
 #include "deltamesh/delaunay.hpp"
 #include "deltamesh/errors.hpp"
@@ -254,6 +255,32 @@ TEST_F(Threads, ParallelDelaunayRepeatedGivesOneResult) {
       std::optional<dm::Mesh> again = dm::detail::parallel_delaunay(pts, 2 * threads, threads, nullptr);
       ASSERT_TRUE(again.has_value());
       EXPECT_TRUE(outcome_of(*again, true) == expected) << threads << " threads, run " << r;
+    }
+  }
+}
+
+// Parallel refinement (refine_in_parts: parts refined on their threads, the
+// stitch and the last pass's scans shared) run again and again: under
+// ThreadSanitizer this is the stress test of its threads, and every run must
+// give the first run's mesh, bit for bit, and a valid one.
+TEST_F(Threads, ParallelRefinementRepeatedGivesOneResult) {
+  const dm::Pslg g = dm::gen::square_with_hole(dm::test::quick_tests() ? 32 : 64);
+  dm::TriangulateOptions to;
+  to.threads = 1;
+  dm::RefineOptions o;
+  o.min_angle_deg = 30;
+  o.max_area = dm::test::quick_tests() ? 8e-4 : 2e-4;
+  const int runs = dm::test::quick_tests() ? 4 : 12;
+  for (unsigned parts : {2u, 4u}) {
+    o.threads = parts;
+    dm::Mesh first = dm::triangulate(g, to);
+    ASSERT_TRUE(dm::detail::refine_in_parts(first, o, parts).has_value());
+    const Outcome expected = outcome_of(first, false);
+    EXPECT_TRUE(expected.valid);
+    for (int r = 0; r < runs; ++r) {
+      dm::Mesh again = dm::triangulate(g, to);
+      ASSERT_TRUE(dm::detail::refine_in_parts(again, o, parts).has_value());
+      EXPECT_TRUE(outcome_of(again, false) == expected) << parts << " parts, run " << r;
     }
   }
 }
