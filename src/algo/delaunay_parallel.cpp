@@ -5,7 +5,7 @@
 // circumdisc lies inside its slab has no point of another slab in it, so it
 // is a Delaunay triangle of the whole set and is kept as it is. The others
 // (their disc crosses a slab boundary, or they are ghosts beyond the slab's
-// hull) are dropped; the gap they leave, between the kept regions, is
+// hull) are dropped, found by a walk from the hull (triangulate_slab); the gap they leave, between the kept regions, is
 // triangulated again from their vertices, as a constrained triangulation
 // whose segments are the edges between kept and dropped triangles. Its
 // triangles outside the kept regions fill the gap. Every edge of the result
@@ -127,26 +127,56 @@ void triangulate_slab(std::span<const Point> points, Slab& s, bool first) {
   ids = std::vector<VertexId>{};
   built.order = std::vector<VertexId>{};
 
+  // The dropped triangles (and the ghosts), found from the hull instead of testing every
+  // triangle: a triangle whose circumdisc reaches beyond a side of the slab
+  // holds some point q there, and the triangles whose discs hold q (q's
+  // Bowyer-Watson cavity, ghosts included) are connected and, q being
+  // outside the hull, include a ghost. So every such triangle is joined to
+  // a hull triangle through triangles that are dropped too, and only those
+  // and their neighbours are tested: O(sqrt n) of the slab's triangles. The
+  // test is conservative (false when unsure), so the walk never stops short
+  // of one; a triangle it does not reach has its disc inside the slab, or
+  // touching a side only (then a point of the next slab on the circle makes
+  // it one of two Delaunay choices, and the gap, bounded by its seams,
+  // fits either).
   const std::size_t slots = m.num_triangle_slots();
-  s.rank.assign(slots, kNone);
-  for (TriId t = 0; t < slots; ++t) {
-    if (!m.is_real(t)) continue;
+  constexpr std::uint8_t kUntested = 0, kKept = 1, kDropped = 2;
+  std::vector<std::uint8_t> state(slots, kUntested);
+  std::vector<TriId> dropped;
+  const auto test = [&](TriId t) {
+    if (state[t] != kUntested || !m.is_real(t)) return;
     const auto [a, b, c] = m.triangle(t);
-    if (disc_inside_slab(m.point(a), m.point(b), m.point(c), s.lo, s.hi)) s.rank[t] = static_cast<TriId>(s.kept++);
-  }
-  s.in_gap.assign(k, 0);
-  for (TriId t = 0; t < slots; ++t) {
-    if (!m.is_real(t)) continue;
-    if (s.rank[t] == kNone) {
-      for (VertexId v : m.triangle(t)) s.in_gap[v] = 1;
-      continue;
-    }
-    for (HalfEdgeId e = 3 * t; e < 3 * t + 3; ++e)
-      if (s.rank[tri_of(m.twin(e))] == kNone) {
-        s.seams.push_back(e);
-        s.in_gap[m.origin(e)] = s.in_gap[m.dest(e)] = 1;
+    state[t] = disc_inside_slab(m.point(a), m.point(b), m.point(c), s.lo, s.hi) ? kKept : kDropped;
+    if (state[t] == kDropped) dropped.push_back(t);
+  };
+  std::vector<HalfEdgeId> hull;  // the real triangles' half-edges along the hull
+  for (TriId g = 0; g < slots; ++g)
+    if (!m.is_dead(g) && m.is_ghost(g))
+      for (HalfEdgeId e = 3 * g; e < 3 * g + 3; ++e) {
+        const HalfEdgeId o = m.twin(e);
+        if (!m.is_real(tri_of(o))) continue;
+        hull.push_back(o);
+        test(tri_of(o));
       }
-  }
+  for (std::size_t i = 0; i < dropped.size(); ++i)
+    for (HalfEdgeId e = 3 * dropped[i]; e < 3 * dropped[i] + 3; ++e) test(tri_of(m.twin(e)));
+  s.rank.assign(slots, kNone);
+  for (TriId t = 0; t < slots; ++t)
+    if (state[t] != kDropped && m.is_real(t)) s.rank[t] = static_cast<TriId>(s.kept++);
+  s.in_gap.assign(k, 0);
+  for (TriId t : dropped)
+    for (HalfEdgeId e = 3 * t; e < 3 * t + 3; ++e) {
+      s.in_gap[m.origin(e)] = 1;
+      const HalfEdgeId o = m.twin(e);
+      if (s.rank[tri_of(o)] != kNone) s.seams.push_back(o);
+    }
+  // A kept triangle on the hull borders the gap too (the ghosts are dropped).
+  for (HalfEdgeId o : hull)
+    if (s.rank[tri_of(o)] != kNone) {
+      s.seams.push_back(o);
+      s.in_gap[m.origin(o)] = s.in_gap[m.dest(o)] = 1;
+    }
+  std::sort(s.seams.begin(), s.seams.end());  // slot order, as a scan of the kept triangles lists them
   for (VertexId v = 0; v < k; ++v)
     if (s.in_gap[v]) s.gap_vertices.push_back(s.gid[v]);
   // Only the triangles are needed from here on: less memory at the merge
