@@ -193,6 +193,10 @@ void triangulate_slab(std::span<const Point> points, Slab& s, bool first) {
 void copy_slab(Slab& s, std::size_t first, const VertexId* sv, const HalfEdgeId* sw, VertexId* tv, HalfEdgeId* tw,
                HalfEdgeId* ve) {
   const std::size_t base = 3 * first;
+  // The last out-edge in slot order, as Mesh::compact() picks it: noted per
+  // slab vertex (near in memory, in insertion order), then written once per
+  // vertex into the result's input numbering.
+  std::vector<HalfEdgeId> last(s.gid.size(), kNone);
   for (TriId t = 0; t < s.rank.size(); ++t) {
     if (s.rank[t] == kNone) continue;
     const std::size_t f = base + 3 * std::size_t{s.rank[t]};
@@ -200,12 +204,13 @@ void copy_slab(Slab& s, std::size_t first, const VertexId* sv, const HalfEdgeId*
       const HalfEdgeId e = 3 * t + i, o = sw[e];
       const VertexId v = sv[e];
       tv[f + i] = s.gid[v];
-      // The last out-edge in slot order, as Mesh::compact() picks it.
-      if (!s.in_gap[v]) ve[s.gid[v]] = static_cast<HalfEdgeId>(f + i);
+      last[v] = static_cast<HalfEdgeId>(f + i);
       const TriId u = s.rank[tri_of(o)];
       tw[f + i] = u == kNone ? kNone : static_cast<HalfEdgeId>(base + 3 * std::size_t{u} + o % 3);
     }
   }
+  for (std::size_t v = 0; v < last.size(); ++v)
+    if (last[v] != kNone && !s.in_gap[v]) ve[s.gid[v]] = last[v];
   for (HalfEdgeId e : s.seams) s.open.push_back(static_cast<HalfEdgeId>(base + 3 * std::size_t{s.rank[tri_of(e)]} + e % 3));
   s.mesh = Mesh{};
   s.rank = std::vector<TriId>{};
