@@ -59,4 +59,23 @@ void run_tasks(std::size_t count, unsigned threads, Task&& task) {
     if (e) std::rethrow_exception(e);
 }
 
+// Replaces `slot` by `value` while replace(current) holds, atomically
+// (relaxed order): for arrays the scan threads write concurrently, where
+// the result must not depend on the interleaving. std::atomic_ref where the
+// standard library has it (emscripten 3.1's libc++ has not; the web build
+// runs one thread), else the compiler's __atomic builtins it is made of.
+template <class T, class Replace>
+void atomic_replace_while(T& slot, T value, Replace replace) {
+#if defined(__cpp_lib_atomic_ref)
+  std::atomic_ref<T> a(slot);
+  T cur = a.load(std::memory_order_relaxed);
+  while (replace(cur) && !a.compare_exchange_weak(cur, value, std::memory_order_relaxed)) {
+  }
+#else
+  T cur = __atomic_load_n(&slot, __ATOMIC_RELAXED);
+  while (replace(cur) && !__atomic_compare_exchange_n(&slot, &cur, value, true, __ATOMIC_RELAXED, __ATOMIC_RELAXED)) {
+  }
+#endif
+}
+
 }  // namespace deltamesh::detail

@@ -57,20 +57,14 @@ void Refiner::scan_edges_in_parallel() {
   std::fill(ve_.begin(), ve_.end(), kNone);
   for_chunks(ne, scan_threads_, [&](std::size_t, std::size_t lo, std::size_t hi) {
     for (std::size_t e = lo; e < hi; ++e) {
-      std::atomic_ref<HalfEdgeId> v(ve_[tv_[e]]);
-      HalfEdgeId cur = v.load(std::memory_order_relaxed);
-      while (cur > e && !v.compare_exchange_weak(cur, static_cast<HalfEdgeId>(e), std::memory_order_relaxed)) {
-      }
+      detail::atomic_replace_while(ve_[tv_[e]], static_cast<HalfEdgeId>(e), [e](HalfEdgeId cur) { return cur > e; });
     }
   });
   for_chunks(ne, scan_threads_, [&](std::size_t, std::size_t lo, std::size_t hi) {
     for (std::size_t e = lo; e < hi; ++e) {
       if (tw_[e] != kNone) continue;
-      std::atomic_ref<HalfEdgeId> v(ve_[tv_[e]]);
-      HalfEdgeId cur = v.load(std::memory_order_relaxed);
-      while ((tw_[cur] != kNone || cur < e) &&
-             !v.compare_exchange_weak(cur, static_cast<HalfEdgeId>(e), std::memory_order_relaxed)) {
-      }
+      detail::atomic_replace_while(ve_[tv_[e]], static_cast<HalfEdgeId>(e),
+                                   [&, e](HalfEdgeId cur) { return tw_[cur] != kNone || cur < e; });
     }
   });
 }
