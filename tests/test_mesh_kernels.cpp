@@ -1,5 +1,5 @@
 // The mesh layer's shared kernels (src/mesh): point location with each edge
-// order, the straight segment walk, constrained Lawson legalization, the
+// order, the straight walks (along a segment, towards a point), constrained Lawson legalization, the
 // Bowyer-Watson cavity, the carry of per-half-edge data, the edge and vertex
 // marker rules, and invariant failures typed as InternalError.
 #include <gtest/gtest.h>
@@ -163,6 +163,83 @@ TEST(MeshKernels, TheSegmentWalkCrossesExactlyTheEdgesTheSegmentCrosses) {
       tv, twins.data(), pts, pa, pb, b, ex.edge, [&](HalfEdgeId h) { return h != wall; }, limit);
   EXPECT_EQ(stopped.kind, detail::SegmentWalk::Kind::Stopped);
   EXPECT_EQ(stopped.edge, wall);
+}
+
+TEST(MeshKernels, TheWalkToAPointEndsInItsTriangleOrAtTheFirstEdgeItMayNotCross) {
+  Mesh m = delaunay(random_points(300, 5));  // compacted: hull edges have no twins
+  ASSERT_TRUE(check(m).ok());
+  const VertexId* tv = m.triangle_vertices().data();
+  std::vector<HalfEdgeId> twins(m.triangle_vertices().size());
+  for (HalfEdgeId e = 0; e < twins.size(); ++e) twins[e] = m.twin(e);
+  const Point* pts = m.points().data();
+  const auto in_closed = [&](TriId t, const Point& p) {
+    const auto v = m.triangle(t);
+    return orient2d(m.point(v[0]), m.point(v[1]), p) >= 0 && orient2d(m.point(v[1]), m.point(v[2]), p) >= 0 &&
+           orient2d(m.point(v[2]), m.point(v[0]), p) >= 0;
+  };
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> u(-0.2, 1.2);  // some targets beyond the hull
+  std::size_t reached = 0, left_mesh = 0, walls = 0, on_vertex = 0;
+  for (int k = 0; k < 400; ++k) {
+    const TriId t = static_cast<TriId>(rng() % m.num_triangle_slots());
+    const auto v = m.triangle(t);
+    const Point o{(m.point(v[0]).x + m.point(v[1]).x + m.point(v[2]).x) / 3,
+                  (m.point(v[0]).y + m.point(v[1]).y + m.point(v[2]).y) / 3};
+    Point c{u(rng), u(rng)};
+    if (k % 10 == 0) c = m.point(static_cast<VertexId>(rng() % m.num_vertices()));  // exactly on a vertex
+    if (in_closed(t, c)) continue;  // the walk starts by leaving t
+    const HalfEdgeId exit = detail::line_exit(tv, pts, t, o, c);
+    ASSERT_NE(exit, kNone);
+    ASSERT_EQ(tri_of(exit), t);
+    EXPECT_LT(orient2d(o, c, m.point(m.origin(exit))), 0);
+    EXPECT_GE(orient2d(o, c, m.point(m.dest(exit))), 0);
+    std::vector<HalfEdgeId> crossed;
+    const auto open = [&](HalfEdgeId h) {
+      if (twins[h] == kNone) return false;
+      crossed.push_back(h);
+      return true;
+    };
+    detail::PointTarget target{c};
+    const detail::SegmentWalk w = detail::walk_line(tv, twins.data(), pts, o, c, target, exit, open, twins.size());
+    for (HalfEdgeId h : crossed) {  // each separates o (before it) from c (beyond it)
+      EXPECT_GT(orient2d(m.point(m.origin(h)), m.point(m.dest(h)), o), 0);
+      EXPECT_LT(orient2d(m.point(m.origin(h)), m.point(m.dest(h)), c), 0);
+    }
+    if (w.kind == detail::SegmentWalk::Kind::Reached) {
+      ++reached;
+      const TriId at = tri_of(w.edge);
+      EXPECT_TRUE(in_closed(at, c));
+      EXPECT_EQ(target.side, orient2d(m.point(m.origin(w.edge)), m.point(m.dest(w.edge)), c));
+      const auto a = m.triangle(at);
+      if (k % 10 == 0) {
+        EXPECT_TRUE(c == m.point(a[0]) || c == m.point(a[1]) || c == m.point(a[2]));
+        ++on_vertex;
+      } else {
+        EXPECT_EQ(at, containing(m, c));
+      }
+      // A caller's refusal (a constraint) on the way stops the walk there.
+      if (!crossed.empty()) {
+        const HalfEdgeId wall = crossed[crossed.size() / 2];
+        detail::PointTarget again{c};
+        const detail::SegmentWalk s = detail::walk_line(
+            tv, twins.data(), pts, o, c, again, exit, [&](HalfEdgeId h) { return h != wall; }, twins.size());
+        EXPECT_EQ(s.kind, detail::SegmentWalk::Kind::Stopped);
+        EXPECT_EQ(s.edge, wall);
+        ++walls;
+      }
+    } else {
+      // Stopped at the hull: c lies beyond that hull edge, outside the mesh.
+      ASSERT_EQ(w.kind, detail::SegmentWalk::Kind::Stopped);
+      EXPECT_EQ(twins[w.edge], kNone);
+      EXPECT_LT(orient2d(m.point(m.origin(w.edge)), m.point(m.dest(w.edge)), c), 0);
+      EXPECT_EQ(containing(m, c), kNone);
+      ++left_mesh;
+    }
+  }
+  EXPECT_GT(reached, 50u);
+  EXPECT_GT(left_mesh, 20u);
+  EXPECT_GT(walls, 20u);
+  EXPECT_GT(on_vertex, 10u);
 }
 
 TEST(MeshKernels, ConstrainedLawsonFlipsAllButConstrainedEdges) {

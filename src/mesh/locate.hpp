@@ -4,10 +4,14 @@
 //     (Devillers, Pion, Teillaud 2002, "Walking in a triangulation"); the
 //     order the edges are tried in is a policy (fixed, or random, which rules
 //     out cycles on any triangulation);
-//   segment_exit + walk_segment - the straight walk along a segment a -> b:
-//     the triangle around a it leaves through (or the edge it runs along),
-//     then every edge it crosses up to b, a vertex on it, or an edge the
-//     caller stops at (a constraint).
+//   walk_line - the straight walk along a line pa -> pb, through each edge
+//     it crosses, up to its target (Target: a vertex, or a point anywhere)
+//     or an edge the caller stops at (a constraint). Two ways in:
+//     segment_exit + walk_segment - along a segment a -> b from vertex a:
+//       the triangle around a it leaves through (or the edge it runs
+//       along), then every edge it crosses up to b or a vertex on it;
+//     line_exit + walk_line<PointTarget> - from a point strictly inside a
+//       triangle towards any point c (refinement's Steiner points).
 // Every decision is an exact orientation. Header-only: the hot insertion
 // loops inline them.
 #pragma once
@@ -222,10 +226,11 @@ inline SegmentExit segment_exit(const VertexId* tv, const HalfEdgeId* tw, const 
 
 struct SegmentWalk {
   enum class Kind : std::uint8_t {
-    Reached,    // the walk reached b
-    OnVertex,   // `vertex` lies exactly on the open segment
+    Reached,    // the walk reached its target (PointTarget: `edge` = the
+                // exit edge of the triangle holding it)
+    OnVertex,   // `vertex` lies exactly on the open segment (VertexTarget)
     Stopped,    // the caller's visit refused crossed half-edge `edge`
-    LeftHull,   // the segment left the triangulation (a broken invariant)
+    LeftHull,   // the line left the triangulation (a broken invariant)
     Overrun,    // more than `limit` steps (a broken invariant)
   };
   Kind kind = Kind::Overrun;
@@ -233,13 +238,40 @@ struct SegmentWalk {
   VertexId vertex = kNone;
 };
 
-// The straight walk along the segment from pa to b (point pb) from half-edge
+// What walk_line walks to. A target says whether apex z of the triangle just
+// entered is the end (at), whether the line ends before leaving that
+// triangle through half-edge h (before), and whether a vertex exactly on the
+// line ends the walk (kStopOnLine) or counts as left of it.
+
+// Vertex b, the end of a segment: a vertex on the open segment stops the walk.
+struct VertexTarget {
+  static constexpr bool kStopOnLine = true;
+  VertexId b;
+  bool at(VertexId z) const { return z == b; }
+  bool before(const VertexId*, const Point*, HalfEdgeId) const { return false; }
+};
+
+// Point c anywhere: the walk ends in the triangle whose exit edge does not
+// have c strictly beyond it. A vertex exactly on the line counts as left of
+// it (a symbolic perturbation), so each step is one exact orientation.
+struct PointTarget {
+  static constexpr bool kStopOnLine = false;
+  Point c;
+  double side = 0.0;  // at the end: orient2d of the exit edge and c (0: c on it)
+  bool at(VertexId) const { return false; }
+  bool before(const VertexId* tv, const Point* pts, HalfEdgeId h) {
+    side = orient2d(pts[tv[h]], pts[tv[next_edge(h)]], c);
+    return side >= 0;
+  }
+};
+
+// The straight walk along the line from pa towards pb from half-edge
 // h = u -> w that it crosses (u right, w left of it), through each triangle
-// it crosses. visit(h) is called on each crossed half-edge before the walk
-// goes through it; returning false stops the walk there.
-template <class Visit>
-inline SegmentWalk walk_segment(const VertexId* tv, const HalfEdgeId* tw, const Point* pts, const Point& pa,
-                                const Point& pb, VertexId b, HalfEdgeId h, Visit&& visit, std::size_t limit) {
+// it crosses, up to the target. visit(h) is called on each crossed half-edge
+// before the walk goes through it; returning false stops the walk there.
+template <class Target, class Visit>
+inline SegmentWalk walk_line(const VertexId* tv, const HalfEdgeId* tw, const Point* pts, const Point& pa,
+                             const Point& pb, Target& target, HalfEdgeId h, Visit&& visit, std::size_t limit) {
   SegmentWalk out;
   for (std::size_t guard = 0; guard < limit; ++guard) {
     if (!visit(h)) {
@@ -249,7 +281,7 @@ inline SegmentWalk walk_segment(const VertexId* tv, const HalfEdgeId* tw, const 
     }
     const HalfEdgeId g = tw[h];  // w -> u in the next triangle (w, u, z)
     const VertexId z = tv[prev_edge(g)];
-    if (z == b) {
+    if (target.at(z)) {
       out.kind = SegmentWalk::Kind::Reached;
       return out;
     }
@@ -258,14 +290,43 @@ inline SegmentWalk walk_segment(const VertexId* tv, const HalfEdgeId* tw, const 
       return out;
     }
     const double oz = orient2d(pa, pb, pts[z]);
-    if (oz == 0.0) {
-      out.kind = SegmentWalk::Kind::OnVertex;
-      out.vertex = z;
-      return out;
+    if constexpr (Target::kStopOnLine) {
+      if (oz == 0.0) {
+        out.kind = SegmentWalk::Kind::OnVertex;
+        out.vertex = z;
+        return out;
+      }
     }
     h = oz < 0.0 ? prev_edge(g) : next_edge(g);
+    if (target.before(tv, pts, h)) {
+      out.kind = SegmentWalk::Kind::Reached;
+      out.edge = h;
+      return out;
+    }
   }
   return out;
+}
+
+// The walk along the segment from pa to vertex b (point pb), from half-edge
+// h that segment_exit found.
+template <class Visit>
+inline SegmentWalk walk_segment(const VertexId* tv, const HalfEdgeId* tw, const Point* pts, const Point& pa,
+                                const Point& pb, VertexId b, HalfEdgeId h, Visit&& visit, std::size_t limit) {
+  VertexTarget target{b};
+  return walk_line(tv, tw, pts, pa, pb, target, h, visit, limit);
+}
+
+// The half-edge u -> w of triangle t that the line from pa (strictly inside
+// t) towards pb leaves t through: u right of the line, w left, a vertex on
+// it counting as left (PointTarget's rule). kNone when pa == pb.
+inline HalfEdgeId line_exit(const VertexId* tv, const Point* pts, TriId t, const Point& pa, const Point& pb) {
+  const HalfEdgeId base = 3 * t;
+  const bool left[3] = {orient2d(pa, pb, pts[tv[base]]) >= 0, orient2d(pa, pb, pts[tv[base + 1]]) >= 0,
+                        orient2d(pa, pb, pts[tv[base + 2]]) >= 0};
+  HalfEdgeId exit = kNone;
+  for (unsigned i = 0; i < 3; ++i)
+    if (!left[i] && left[kNextIndex[i]]) exit = base + i;
+  return exit;
 }
 
 }  // namespace deltamesh::detail

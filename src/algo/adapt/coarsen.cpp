@@ -12,6 +12,7 @@
 #include "core/plural.hpp"
 #include "deltamesh/adapt.hpp"
 #include "deltamesh/predicates.hpp"
+#include "mesh/legalize.hpp"
 #include "mesh/trace_hooks.hpp"
 
 namespace deltamesh {
@@ -346,11 +347,6 @@ class Coarsener {
     }
   }
 
-  // Constrained Lawson flips from the edges of the triangles the removal and
-  // its flips changed (the old star's area: only there, or on its outline,
-  // can an edge have stopped being Delaunay). Not from every edge around the
-  // touched vertices: next to a vertex of degree D that costs O(D) per
-  // removal, O(D^2) to coarsen its fan.
   // Vertex v is gone: its old star's slots (changed_) hold the triangles
   // that replace it.
   void trace_removed(TraceObserver& o, VertexId v) {
@@ -360,32 +356,35 @@ class Coarsener {
     detail::TraceAccess::slots(o, ev, m_.triangle_vertices().data(), changed_);
   }
 
+  // The mesh for the kernel's constrained Lawson flips, with the
+  // coarsener's bookkeeping: a flip touches its four vertices (each is
+  // looked at again after the removal).
+  class Topology : public detail::MeshTopology {
+   public:
+    explicit Topology(Coarsener& c) : MeshTopology(c.m_), c_(c) {}
+    void flip(const detail::FlipQuad& q, TraceReason why) {
+      c_.note_flip(q.e);
+      MeshTopology::flip(q, why);
+    }
+
+   private:
+    Coarsener& c_;
+  };
+
+  // Constrained Lawson flips from the edges of the triangles the removal and
+  // its flips changed (the old star's area: only there, or on its outline,
+  // can an edge have stopped being Delaunay). Not from every edge around the
+  // touched vertices: next to a vertex of degree D that costs O(D) per
+  // removal, O(D^2) to coarsen its fan.
+  // (The kernel passes over the edges of dead slots: they have no twins.)
   void lawson() {
     std::vector<HalfEdgeId>& stack = stack_;
     stack.clear();
     for (TriId t : changed_)
       if (!m_.is_dead(t))
         for (HalfEdgeId e = 3 * t; e < 3 * t + 3; ++e) stack.push_back(e);
-    while (!stack.empty()) {
-      const HalfEdgeId e = stack.back();
-      stack.pop_back();
-      const HalfEdgeId f = m_.twin(e);
-      if (f == kNone || m_.is_constrained(e) || m_.is_dead(tri_of(e))) continue;
-      const Point& a = pt(m_.origin(e));
-      const Point& b = pt(m_.dest(e));
-      const Point& c = pt(m_.origin(prev_edge(e)));
-      const Point& d = pt(m_.origin(prev_edge(f)));
-      if (!(incircle(a, b, c, d) > 0)) continue;  // d inside also makes the quad strictly convex
-      note_flip(e);
-      m_.flip(e);
-      if (TraceObserver* o = m_.trace()) [[unlikely]]
-        detail::TraceAccess::flip_at(*o, TraceReason::Lawson, m_.triangle_vertices().data(), e, f);
-      ++st_.flips;
-      stack.push_back(e);
-      stack.push_back(next_edge(e));
-      stack.push_back(f);
-      stack.push_back(next_edge(f));
-    }
+    Topology topo(*this);
+    st_.flips += detail::constrained_lawson(topo, stack);
   }
 
   Mesh& m_;

@@ -9,13 +9,14 @@
 
 #include "algo/refine/refiner.hpp"
 #include "deltamesh/predicates.hpp"
+#include "mesh/locate.hpp"
 
 namespace deltamesh::refinement {
 
-// Straight walk along the ray from t's centroid to c. Stops in the triangle
-// holding c, or at the first segment (or boundary edge) the ray crosses.
-// A vertex exactly on the ray is treated as lying to its left (a symbolic
-// perturbation), so each step is decided by one exact orientation.
+// Point location for a Steiner point c near triangle t: the straight walk
+// (mesh kernel walk_line) along the ray from a point inside t to c. Stops in
+// the triangle holding c, or at the first segment (or boundary edge) the ray
+// crosses. A vertex exactly on the ray counts as left of it (PointTarget).
 Refiner::Walk Refiner::walk(TriId t, const Point& c) const {
   Walk w;
   const HalfEdgeId b0 = 3 * t;
@@ -57,44 +58,37 @@ Refiner::Walk Refiner::walk(TriId t, const Point& c) const {
       return w;
     }
   }
-  const bool left[3] = {orient2d(o, c, A) >= 0, orient2d(o, c, B) >= 0, orient2d(o, c, C) >= 0};
-  HalfEdgeId exit = kNone;
-  for (int i = 0; i < 3; ++i)
-    if (!left[i] && left[(i + 1) % 3]) exit = b0 + i;
+  const HalfEdgeId exit = detail::line_exit(tv_.data(), pts_.data(), t, o, c);
   if (exit == kNone) {
     w.kind = Walk::Failed;
     return w;
   }
-  const std::size_t limit = tv_.size();
-  for (std::size_t steps = 0; steps < limit; ++steps) {
-    const HalfEdgeId f = tw_[exit];
-    if (f == kNone || (fl_[exit] & kConstrained)) {
+  detail::PointTarget target{c};
+  const detail::SegmentWalk r = detail::walk_line(
+      tv_.data(), tw_.data(), pts_.data(), o, c, target, exit,
+      [this](HalfEdgeId h) { return tw_[h] != kNone && !(fl_[h] & kConstrained); }, tv_.size());
+  switch (r.kind) {
+    case detail::SegmentWalk::Kind::Stopped:
       w.kind = Walk::Blocked;
-      w.tri = tri_of(exit);
-      w.edge = exit;
+      w.tri = tri_of(r.edge);
+      w.edge = r.edge;
       return w;
-    }
-    // Entered triangle u through f = (x -> y), x left of the ray, y right.
-    const VertexId apex = tv_[prev_edge(f)];
-    const Point& W = pts_[apex];
-    const HalfEdgeId cand = orient2d(o, c, W) >= 0 ? next_edge(f) : prev_edge(f);
-    const Point& P = pts_[tv_[cand]];
-    const Point& Q = pts_[tv_[next_edge(cand)]];
-    const double oc = orient2d(P, Q, c);
-    if (oc >= 0) {
-      w.tri = tri_of(f);
-      if (c == P || c == Q || c == W) {
+    case detail::SegmentWalk::Kind::Reached: {
+      // c is in the triangle the walk ended in, on its exit edge when side == 0.
+      const HalfEdgeId e = r.edge;
+      w.tri = tri_of(e);
+      if (c == pts_[tv_[e]] || c == pts_[tv_[next_edge(e)]] || c == pts_[tv_[prev_edge(e)]]) {
         w.kind = Walk::OnVertex;
         return w;
       }
       w.kind = Walk::Found;
-      if (oc == 0) w.edge = cand;
+      if (target.side == 0) w.edge = e;
       return w;
     }
-    exit = cand;
+    default:  // LeftHull cannot happen (a compacted mesh has no ghosts); Overrun: a broken mesh
+      w.kind = Walk::Failed;
+      return w;
   }
-  w.kind = Walk::Failed;
-  return w;
 }
 
 inline void Refiner::record_boundary(HalfEdgeId e) {
