@@ -62,4 +62,4 @@ cd "$src/python/tests"  # the tests' own directory: it holds no package named de
 import sys, deltamesh
 assert deltamesh.__file__.startswith(sys.prefix), deltamesh.__file__
 print('wheel_test: testing', deltamesh.__file__)"
-MPLBACKEND=Agg "$tmp/venv/bin/python" -m unittest test_triangle_compat test_deltamesh
+MPLBACKEND=Agg "$tmp/venv/bin/python" -m unittest test_triangle_compat test_deltamesh test_deltamesh_io
