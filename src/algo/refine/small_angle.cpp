@@ -9,7 +9,10 @@
 //    (J. R. Shewchuk, "Delaunay refinement algorithms for triangular mesh
 //    generation", CGTA 2002), and splits in a narrow wedge are mirrored on
 //    its other side at the same radius (with the concentric shells of
-//    encroachment.cpp).
+//    encroachment.cpp); at the apex itself, no split below a fraction of
+//    the apex's local feature size for a triangle inside the small angle
+//    (refuse_split_near_apex: the shells are copies of each other, so a
+//    cascade down them would not end).
 //  - Thin channels between the two sides of a spike (a wedge under
 //    kWedgeAngle whose sides run on, nearly antiparallel, through gentle
 //    bends) are treated like the wedge itself: refining there cascades down
