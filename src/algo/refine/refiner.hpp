@@ -312,9 +312,9 @@ class Refiner {
   double small_cos2_ = 0.25;    // cos^2 of the largest input angle the small-angle rule treats as small
   double channel_sin2_ = 0;     // sin^2 of the largest angle between the two sides of a channel
   std::vector<float> apex_cos_; // per input vertex: cosine of its smallest angle between segments (-2: none)
-  // Per input vertex with shells: its squared local feature size in the
-  // input (the distance to the nearest input vertex or segment not incident
-  // to it); 0 for the others.
+  // Per input vertex with shells and three or more segments (a hub): its
+  // squared local feature size in the input (the distance to the nearest
+  // input vertex or segment not incident to it); 0 for the others.
   std::vector<double> apex_lfs2_;
   std::size_t budget_ = kUnlimited;
   std::size_t n_input_ = 0;

@@ -71,7 +71,7 @@ void Refiner::find_small_angles() {
   measure_apex_feature_sizes();
 }
 
-// The local feature size of the input at each vertex with shells (Ruppert
+// The local feature size of the input at each hub with shells (Ruppert
 // 1995: here the distance to the nearest input vertex or segment that does
 // not touch it), from the triangulation refinement starts from: the nearest
 // vertex is a neighbour, and a segment nearer than every neighbour bounds a
@@ -80,7 +80,7 @@ void Refiner::measure_apex_feature_sizes() {
   apex_lfs2_.assign(n_input_, 0.0);
   for (HalfEdgeId e = 0; e < tv_.size(); ++e) {
     const VertexId v = tv_[e];
-    if (v >= n_input_ || !(apex_cos_[v] > shell_cos_)) continue;
+    if (v >= n_input_ || !(apex_cos_[v] > shell_cos_) || adj_start_[v + 1] - adj_start_[v] < 3) continue;
     const VertexId w = tv_[next_edge(e)], x = tv_[prev_edge(e)];
     if (w >= pts_.size() || x >= pts_.size()) continue;  // a ghost
     const Point& V = pts_[v];
@@ -363,10 +363,10 @@ bool Refiner::left_alone(const TriView& tv, bool holding) const {
 // segment next to a small-angle apex is not split on behalf of a skinny
 // triangle when the split would make a subsegment shorter than the
 // triangle's shortest edge.
-// And a guard at the apex itself: a subsegment from an apex with shells is
-// not split into pieces shorter than kApexGuard times the apex's local
-// feature size for a skinny triangle that lies inside an input angle under
-// 60° there. Near the apex everything is a power-of-two copy of itself one
+// And a guard at a hub (an apex with shells and three or more segments): a
+// subsegment from the hub is not split into pieces shorter than kApexGuard
+// times the hub's local feature size for a skinny triangle that lies inside
+// an input angle under 60° there. Near the apex everything is a power-of-two copy of itself one
 // shell further out, so once a skinny triangle beside the innermost shell
 // asks for a split that makes the next shell, the same triangle comes back
 // one shell further in, forever (a hub of 16 random spokes ran down to
