@@ -9,7 +9,7 @@
 //    (J. R. Shewchuk, "Delaunay refinement algorithms for triangular mesh
 //    generation", CGTA 2002), and splits in a narrow wedge are mirrored on
 //    its other side at the same radius (with the concentric shells of
-//    encroachment.cpp); at the apex itself, no split below a fraction of
+//    encroachment.cpp); at a hub's apex, no split below a fraction of
 //    the apex's local feature size for a triangle inside the small angle
 //    (refuse_split_near_apex: the shells are copies of each other, so a
 //    cascade down them would not end).
@@ -31,9 +31,9 @@ namespace deltamesh::refinement {
 // Concentric shells only around input vertices with a domain angle under
 // this (midpoints elsewhere). Measured on the corpus.
 constexpr double kShellApexAngle = 60.0;
-// A subsegment at such an apex is not split below this fraction of the
-// apex's local feature size for a triangle in a small input angle there
-// (refuse_split_near_apex).
+// A subsegment at such an apex with three or more segments (a hub) is not
+// split below this fraction of the hub's local feature size for a triangle
+// in a small input angle there (refuse_split_near_apex).
 constexpr double kApexGuard = 1.0 / 16;
 // Thin channels: the sides of a wedge under kWedgeAngle, continued through
 // input vertices that bend less than kChannelBend, bound a channel where two
