@@ -345,14 +345,14 @@ void Refiner::decide(TriId t, Decision& d) {
       return;
     case Walk::Blocked:
       enc_scratch_.push_back(w.edge);
-      decide_segments(enc_scratch_, ev, d);
+      decide_segments(t, enc_scratch_, ev, d);
       return;
     case Walk::Found:
       break;
   }
   if (w.edge != kNone && (fl_[w.edge] & kConstrained)) {  // on a segment
     enc_scratch_.push_back(w.edge);
-    decide_segments(enc_scratch_, ev, d);
+    decide_segments(t, enc_scratch_, ev, d);
     return;
   }
   if (!cavity(d.c, w.tri)) {
@@ -368,15 +368,15 @@ void Refiner::decide(TriId t, Decision& d) {
     if (splittable(e)) enc_scratch_.push_back(e);
   }
   if (!enc_scratch_.empty()) {
-    decide_segments(enc_scratch_, ev, d);
+    decide_segments(t, enc_scratch_, ev, d);
     return;
   }
   d.kind = Decision::Insert;
 }
 
-// The subsegments in `enc` that may be split for a triangle evaluated as
+// The subsegments in `enc` that may be split for triangle t, evaluated as
 // `ev`; none: a transient skip, with the reason.
-void Refiner::decide_segments(const std::vector<HalfEdgeId>& enc, const Eval& ev, Decision& d) {
+void Refiner::decide_segments(TriId t, const std::vector<HalfEdgeId>& enc, const Eval& ev, Decision& d) {
   Reason why = Reason::None;
   for (HalfEdgeId e : enc) {
     if (!splittable(e)) {
@@ -386,7 +386,7 @@ void Refiner::decide_segments(const std::vector<HalfEdgeId>& enc, const Eval& ev
     // The rule against cascades is for skinny triangles (as the small-angle
     // skip in decide()): a triangle above its size bound gets its split, and
     // size bounds end those splits.
-    if (!ev.large && refuse_split_near_apex(e, ev)) {
+    if (!ev.large && refuse_split_near_apex(e, ev, t)) {
       if (why == Reason::None) why = Reason::SmallAngle;
       continue;
     }

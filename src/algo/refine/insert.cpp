@@ -85,7 +85,15 @@ void Refiner::insert_interior(const Point& c, TriId seed) {
   ++st_.interior_points;
   const std::size_t n = bnd_.size();
   fan_.resize(n);
-  for (std::size_t i = 0; i < n; ++i) fan_[i] = i < cav_.size() ? cav_[i] : new_slot(v);
+  if (perturb_ == 2) [[unlikely]] {  // the test hook (queue.hpp): slots sorted, the fan from its lowest vertex
+    std::vector<TriId> slots(cav_.tris());
+    std::sort(slots.begin(), slots.end());
+    for (std::size_t i = 0; i < n; ++i) fan_[i] = i < slots.size() ? slots[i] : new_slot(v);
+    const auto lowest = std::min_element(bnd_.begin(), bnd_.end(), [](const BoundaryEdge& x, const BoundaryEdge& y) { return x.a < y.a; });
+    std::rotate(bnd_.begin(), lowest, bnd_.end());
+  } else {
+    for (std::size_t i = 0; i < n; ++i) fan_[i] = i < cav_.size() ? cav_[i] : new_slot(v);
+  }
   // Vertices whose out-edge lies in the cavity get the fan's outer edge.
   for (std::size_t i = 0; i < n; ++i) {
     const HalfEdgeId oe = ve_[bnd_[i].a];

@@ -16,6 +16,13 @@ namespace deltamesh::refinement {
 
 constexpr int kBuckets = 2048;
 
+// Test hook (tests/test_refine_hubs.cpp), 0 everywhere else: another order
+// of the same work, to check that the small-angle rules do not depend on
+// luck of order. 1: the bucket bounds move by a relative 2^-40 (keys just
+// below a bound change bucket); 2: each new fan is written from the lowest
+// slot and the lowest vertex id (insert.cpp). Read once per refinement.
+inline int order_perturbation_for_tests = 0;
+
 // Bucket of a skinny triangle, shortest edge first (RefineOrder::
 // ShortestEdgeFirst): three buckets per octave of the squared shortest edge
 // relative to the input's unit (Refiner::unit_; the exponent from frexp: no

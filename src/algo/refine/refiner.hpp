@@ -124,7 +124,7 @@ class Refiner {
     std::vector<SubsegmentRef> segments;
   };
   inline void decide(TriId t, Decision& d);
-  void decide_segments(const std::vector<HalfEdgeId>& encroached, const Eval& ev, Decision& d);
+  void decide_segments(TriId t, const std::vector<HalfEdgeId>& encroached, const Eval& ev, Decision& d);
   bool budget_left();
   std::uint32_t input_segment(VertexId a, VertexId b) const;
   std::uint32_t segment_of(VertexId a, VertexId b) const;
@@ -218,7 +218,9 @@ class Refiner {
   template <class F>
   void spike_segments(VertexId v, std::uint32_t seg, F&& f) const;
   bool left_alone(const TriView& tv, bool holding) const;
-  bool refuse_split_near_apex(HalfEdgeId e, const Eval& ev) const;
+  bool refuse_split_near_apex(HalfEdgeId e, const Eval& ev, TriId t) const;
+  void measure_apex_feature_sizes();
+  bool in_small_sector(VertexId apex, const Point& g) const;
   bool exempt_from_r1(HalfEdgeId e) const;
   void mirror_split(std::uint32_t seg, VertexId apex, double radius, int depth);
   double gap2(std::uint32_t s, std::uint32_t t, VertexId apex, double radius) const;
@@ -305,10 +307,15 @@ class Refiner {
   // tests, whose lengths are powers of two, cascade.)
   double key_scale_ = 1;
   bool has_markers_ = false;
+  int perturb_ = 0;             // order_perturbation_for_tests (queue.hpp) when refinement started
   double shell_cos_ = -2;       // input vertices whose smallest segment angle has a larger cosine get shells
   double small_cos2_ = 0.25;    // cos^2 of the largest input angle the small-angle rule treats as small
   double channel_sin2_ = 0;     // sin^2 of the largest angle between the two sides of a channel
   std::vector<float> apex_cos_; // per input vertex: cosine of its smallest angle between segments (-2: none)
+  // Per input vertex with shells and three or more segments (a hub): its
+  // squared local feature size in the input (the distance to the nearest
+  // input vertex or segment not incident to it); 0 for the others.
+  std::vector<double> apex_lfs2_;
   std::size_t budget_ = kUnlimited;
   std::size_t n_input_ = 0;
   unsigned scan_threads_ = 1;

@@ -9,7 +9,10 @@
 //    (J. R. Shewchuk, "Delaunay refinement algorithms for triangular mesh
 //    generation", CGTA 2002), and splits in a narrow wedge are mirrored on
 //    its other side at the same radius (with the concentric shells of
-//    encroachment.cpp).
+//    encroachment.cpp); at a hub's apex, no split below a fraction of
+//    the apex's local feature size for a triangle inside the small angle
+//    (refuse_split_near_apex: the shells are copies of each other, so a
+//    cascade down them would not end).
 //  - Thin channels between the two sides of a spike (a wedge under
 //    kWedgeAngle whose sides run on, nearly antiparallel, through gentle
 //    bends) are treated like the wedge itself: refining there cascades down
@@ -28,6 +31,10 @@ namespace deltamesh::refinement {
 // Concentric shells only around input vertices with a domain angle under
 // this (midpoints elsewhere). Measured on the corpus.
 constexpr double kShellApexAngle = 60.0;
+// A subsegment at such an apex with three or more segments (a hub) is not
+// split below this fraction of the hub's local feature size for a triangle
+// in a small input angle there (refuse_split_near_apex).
+constexpr double kApexGuard = 1.0 / 16;
 // Thin channels: the sides of a wedge under kWedgeAngle, continued through
 // input vertices that bend less than kChannelBend, bound a channel where two
 // of them run within kChannelParallel of each other, closer than
@@ -40,6 +47,8 @@ constexpr double kChannelGap = 64.0;
 // of the domain narrower than 60° (the angle inside a hole or outside the
 // domain does not count), the thresholds of the rules, and the spikes.
 void Refiner::find_small_angles() {
+  perturb_ = order_perturbation_for_tests;
+  if (perturb_ == 1) key_scale_ *= 1 + 0x1p-40;  // the test hook (queue.hpp): bucket bounds moved
   shell_cos_ = std::cos(kShellApexAngle * std::numbers::pi / 180);
   small_cos2_ = std::cos(kWedgeAngle * std::numbers::pi / 180) * std::cos(kWedgeAngle * std::numbers::pi / 180);
   // A sector runs counter-clockwise from a constrained out-edge through
@@ -59,6 +68,32 @@ void Refiner::find_small_angles() {
     }
   }
   mark_spikes();
+  measure_apex_feature_sizes();
+}
+
+// The local feature size of the input at each hub with shells (Ruppert
+// 1995: here the distance to the nearest input vertex or segment that does
+// not touch it), from the triangulation refinement starts from: the nearest
+// vertex is a neighbour, and a segment nearer than every neighbour bounds a
+// triangle of the vertex's fan.
+void Refiner::measure_apex_feature_sizes() {
+  apex_lfs2_.assign(n_input_, 0.0);
+  for (HalfEdgeId e = 0; e < tv_.size(); ++e) {
+    const VertexId v = tv_[e];
+    if (v >= n_input_ || !(apex_cos_[v] > shell_cos_) || adj_start_[v + 1] - adj_start_[v] < 3) continue;
+    const VertexId w = tv_[next_edge(e)], x = tv_[prev_edge(e)];
+    if (w >= pts_.size() || x >= pts_.size()) continue;  // a ghost
+    const Point& V = pts_[v];
+    double d2 = dist2(V, pts_[w]);
+    if (fl_[next_edge(e)] & kConstrained) {  // the opposite edge w -> x
+      const Point& W = pts_[w];
+      const Point& X = pts_[x];
+      const double ux = X.x - W.x, uy = X.y - W.y, l2 = ux * ux + uy * uy;
+      const double f = l2 > 0 ? std::clamp(((V.x - W.x) * ux + (V.y - W.y) * uy) / l2, 0.0, 1.0) : 0.0;
+      d2 = std::min(d2, dist2(V, {W.x + f * ux, W.y + f * uy}));
+    }
+    if (apex_lfs2_[v] == 0 || d2 < apex_lfs2_[v]) apex_lfs2_[v] = d2;
+  }
 }
 
 // The sector from constrained out-edge s.e0 of an input vertex: its angle
@@ -328,14 +363,54 @@ bool Refiner::left_alone(const TriView& tv, bool holding) const {
 // segment next to a small-angle apex is not split on behalf of a skinny
 // triangle when the split would make a subsegment shorter than the
 // triangle's shortest edge.
-bool Refiner::refuse_split_near_apex(HalfEdgeId e, const Eval& ev) const {
+// And a guard at a hub (an apex with shells and three or more segments): a
+// subsegment from the hub is not split into pieces shorter than kApexGuard
+// times the hub's local feature size for a skinny triangle that lies inside
+// an input angle under 60° there. Near the apex everything is a power-of-two copy of itself one
+// shell further out, so once a skinny triangle beside the innermost shell
+// asks for a split that makes the next shell, the same triangle comes back
+// one shell further in, forever (a hub of 16 random spokes ran down to
+// 2^-169 of its size when the queue's order moved by 2^-40). What is left
+// lies in the small angle: the input angle explains it, the feature size
+// bounds the work.
+bool Refiner::refuse_split_near_apex(HalfEdgeId e, const Eval& ev, TriId t) const {
   if (!opt_.small_angle_protection) return false;
   const VertexId a = tv_[e], b = tv_[next_edge(e)];
   const std::uint32_t s = segment_of(a, b);
   if (s == kNone || !seg_small_[s]) return false;
   const Point m = segment_split_point(a, b);
   const double part = std::min(dist2(m, pts_[a]), dist2(m, pts_[b]));
-  return part < ev.shortest2;
+  if (part < ev.shortest2) return true;
+  const bool ain = a < n_input_, bin = b < n_input_;
+  if (ain == bin) return false;
+  const VertexId apex = ain ? a : b;
+  if (!(part < kApexGuard * kApexGuard * apex_lfs2_[apex])) return false;
+  const Point& p0 = pts_[tv_[3 * t]];
+  const Point& p1 = pts_[tv_[3 * t + 1]];
+  const Point& p2 = pts_[tv_[3 * t + 2]];
+  return in_small_sector(apex, {(p0.x + p1.x + p2.x) / 3, (p0.y + p1.y + p2.y) / 3});
+}
+
+// Whether g lies in an input angle under 60° at `apex`: between two
+// segments there that are next to each other around it, at most as far
+// from the apex as the longer of the two reaches.
+bool Refiner::in_small_sector(VertexId apex, const Point& g) const {
+  const Point& A = pts_[apex];
+  const double gx = g.x - A.x, gy = g.y - A.y;
+  const double dg = std::atan2(gy, gx);
+  constexpr double kTwoPi = 2 * std::numbers::pi;
+  double ccw = INFINITY, cw = INFINITY, reach_ccw = 0, reach_cw = 0;
+  for (std::uint32_t i = adj_start_[apex]; i < adj_start_[apex + 1]; ++i) {
+    const Point& O = pts_[adj_[i].first];
+    const double ox = O.x - A.x, oy = O.y - A.y;
+    double d = std::atan2(oy, ox) - dg;
+    while (d < 0) d += kTwoPi;
+    while (d >= kTwoPi) d -= kTwoPi;
+    const double len2 = ox * ox + oy * oy;
+    if (d < ccw) ccw = d, reach_ccw = len2;
+    if (kTwoPi - d < cw) cw = kTwoPi - d, reach_cw = len2;
+  }
+  return ccw + cw < std::numbers::pi / 3 && gx * gx + gy * gy <= std::max(reach_ccw, reach_cw);
 }
 
 // Rule R1 yields when splitting the subsegment would only make triangles
