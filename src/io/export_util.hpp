@@ -1,5 +1,5 @@
-// Shared pieces of the exchange-format writers (msh, vtk, geojson, off):
-// a buffered number writer over an AtomicFile, the output numbering of
+// Shared pieces of the writers (Triangle's files and the exchange formats
+// msh, vtk, geojson, off): a buffered number writer over an AtomicFile, the output numbering of
 // triangles, per-triangle quantities and the boundary/segment edge list.
 #pragma once
 #include <algorithm>
@@ -18,9 +18,39 @@
 
 namespace deltamesh::io {
 
+// Decimal digits of v at p, as std::to_chars writes them; returns the end.
+// Two digits per step from a table: the writers' lines are mostly integers.
+inline char* write_decimal(char* p, long long v) {
+  static constexpr char kPairs[] =
+      "0001020304050607080910111213141516171819202122232425262728293031323334353637383940414243444546474849"
+      "5051525354555657585960616263646566676869707172737475767778798081828384858687888990919293949596979899";
+  unsigned long long u = static_cast<unsigned long long>(v);
+  if (v < 0) {
+    *p++ = '-';
+    u = 0 - u;
+  }
+  char tmp[20];  // backwards: 2^64 has 20 digits
+  char* q = tmp + sizeof tmp;
+  while (u >= 100) {
+    const auto i = static_cast<std::size_t>(u % 100) * 2;
+    u /= 100;
+    *--q = kPairs[i + 1];
+    *--q = kPairs[i];
+  }
+  if (u >= 10) {
+    const auto i = static_cast<std::size_t>(u) * 2;
+    *--q = kPairs[i + 1];
+    *--q = kPairs[i];
+  } else {
+    *--q = static_cast<char>('0' + u);
+  }
+  while (q != tmp + sizeof tmp) *p++ = *q++;
+  return p;
+}
+
 // Buffered writer into an AtomicFile: numbers go straight into the buffer
-// with std::to_chars (shortest round-trip form for doubles); the buffer is
-// flushed whenever it passes kChunk.
+// (integers by write_decimal, doubles in the shortest round-trip form); the
+// buffer is flushed whenever it passes kChunk.
 class OutBuffer {
  public:
   explicit OutBuffer(AtomicFile& file) : file_(file), buf_(kChunk + kSlack) {}
@@ -42,7 +72,7 @@ class OutBuffer {
   }
   void put_int(long long v) {
     room();
-    n_ = static_cast<std::size_t>(std::to_chars(buf_.data() + n_, buf_.data() + buf_.size(), v).ptr - buf_.data());
+    raw_int(v);
   }
   void put_uint(unsigned long long v) {
     room();
@@ -63,6 +93,19 @@ class OutBuffer {
     put(' ');
     put_double(v);
   }
+  // The unchecked forms, for a line of a few fields after one line_room()
+  // (kSlack holds any such line), so that each field skips the check.
+  void line_room() { room(); }
+  void raw(char c) { buf_[n_++] = c; }
+  void raw_field_int(long long v) {
+    buf_[n_++] = ' ';
+    raw_int(v);
+  }
+  void raw_int(long long v) { n_ = static_cast<std::size_t>(write_decimal(buf_.data() + n_, v) - buf_.data()); }
+  void raw_field_double(double v) {
+    buf_[n_++] = ' ';
+    n_ = static_cast<std::size_t>(chars::shortest(buf_.data() + n_, buf_.data() + buf_.size(), v).ptr - buf_.data());
+  }
   // Flushes and renames the file onto its target.
   void commit() {
     flush();
@@ -71,7 +114,7 @@ class OutBuffer {
 
  private:
   static constexpr std::size_t kChunk = std::size_t{1} << 20;
-  static constexpr std::size_t kSlack = 256;  // > any single numeric put
+  static constexpr std::size_t kSlack = 256;  // > any single numeric put, or a raw line of a few fields
   void room() {
     if (n_ >= kChunk) flush();
   }
