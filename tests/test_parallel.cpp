@@ -187,9 +187,11 @@ TEST(ParallelRefine, SameBoundsAsSequential) {
   const bool quick = dm::test::quick_tests();
   std::vector<RefineCase> cases;
   cases.push_back({"square-hole q30", dm::gen::square_with_hole(64), 30, quick ? 2e-4 : 5e-5});
-  // Not smaller in quick (sanitizer) runs: at 4e-4 (13k triangles) the fine
-  // boundary makes the count differ by 4%.
-  cases.push_back({"smooth q33", dm::gen::smooth_polygon(2000), 33, 1e-4});
+  // The cuts between parts add triangles along the fine boundary, which
+  // matters less as the mesh grows: parallel/sequential with 2 and 3 parts
+  // measured 1.024/1.045 at 1e-4 (33k triangles), 1.013/1.025 at 5e-5 (64k),
+  // 0.998/1.004 at 1.2e-5 (259k). Not smaller in quick (sanitizer) runs.
+  cases.push_back({"smooth q33", dm::gen::smooth_polygon(2000), 33, 5e-5});
   for (const RefineCase& c : cases) {
     dm::RefineOptions o;
     o.min_angle_deg = c.angle;

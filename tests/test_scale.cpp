@@ -144,9 +144,10 @@ TEST(Scale, PowersOfTenGiveTheSameMeshButForRoundingOnTheCorpus) {
 }
 
 // With an area bound (1/1000 of the box, times 10^2k where that stays a
-// normal double) the meshes are larger and still nearly the same, but not
-// yet within the bounds: counts within 5% (measured: up to 2.3%),
-// and the bound is met. Known gap (docs/robustness.md).
+// normal double) the meshes are larger and the same but for rounding: the
+// triangle count within 1% and the smallest angle within 0.01 degrees, and
+// the bound is met. Needs each fan written from the cavity's lowest vertex
+// (insert.cpp) and bucket keys nudged off their bounds (queue.hpp).
 TEST(Scale, PowersOfTenWithAnAreaBoundGiveNearlyTheSameMesh) {
   for (const test::ScaleInput& input : test::scale_inputs(false)) {
     SCOPED_TRACE(input.name);
@@ -158,7 +159,8 @@ TEST(Scale, PowersOfTenWithAnAreaBoundGiveNearlyTheSameMesh) {
       const double s = std::pow(10.0, k);
       const RunResult r = mesh("-pq30", test::scaled_pslg(input.pslg, s), area * s * s);
       expect_valid_scaled(r.mesh, int(std::lround(k * std::log2(10.0))));
-      EXPECT_NEAR(double(r.mesh.num_triangles()), n0, 0.05 * n0);
+      EXPECT_LE(std::fabs(double(r.mesh.num_triangles()) - n0), 0.01 * n0) << r.mesh.num_triangles() << " vs " << n0;
+      EXPECT_NEAR(min_angle(r.mesh), a0, 0.01);
       EXPECT_TRUE(r.complete()) << r.stats.refine.summary();
       EXPECT_GE(r.stats.refine.reached_angle_deg, 30.0);
       if (a0 >= 30.0 && r.stats.refine.below_small_input_angle == 0) {

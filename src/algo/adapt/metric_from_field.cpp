@@ -152,9 +152,8 @@ std::vector<Metric> metric_from_hessian(const Mesh& mesh, std::span<const Metric
     if (sc.complexity > 0 && sc.p > 0) k = std::pow(l1 * l2, -1 / (2 * sc.p + 2));
     m[i] = from_eigen(k * l1, k * l2, e.c, e.s);
   }
-  double global = 0;
-  if (sc.complexity > 0) {
-    // N = D * integral of sqrt(det M) (P1 quadrature of the vertex values).
+  // N = D * integral of sqrt(det M) (P1 quadrature of the vertex values).
+  const auto complexity = [&](const std::vector<Metric>& met) {
     double integral = 0;
     for (TriId t = 0; t < mesh.num_triangle_slots(); ++t) {
       if (!mesh.is_real(t)) continue;
@@ -162,22 +161,42 @@ std::vector<Metric> metric_from_hessian(const Mesh& mesh, std::span<const Metric
       const Point &a = mesh.point(v[0]), &b = mesh.point(v[1]), &c = mesh.point(v[2]);
       const double area = 0.5 * std::fabs((b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x));
       double s = 0;
-      for (VertexId w : v) s += std::sqrt(std::max(0.0, m[w].m11 * m[w].m22 - m[w].m12 * m[w].m12));
+      for (VertexId w : v) s += std::sqrt(std::max(0.0, met[w].m11 * met[w].m22 - met[w].m12 * met[w].m12));
       integral += area * s / 3;
     }
-    if (!(integral > 0)) throw InputError("metric scaling to a complexity needs a mesh with triangles");
-    global = sc.complexity / integral;
-  } else {
-    global = 2.0 / 9.0 / sc.tolerance;
+    return integral;
+  };
+  // The global factor, then the size and aspect bounds per vertex.
+  const auto bounded = [&](double global) {
+    std::vector<Metric> out(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      const Eigen2 e = eigen(adaptation::scaled(m[i], global));
+      double l2 = std::clamp(e.l2, lmin, lmax);
+      double l1 = std::clamp(e.l1, lmin, lmax);
+      l1 = std::max(l1, l2 / (sc.max_aspect * sc.max_aspect));
+      out[i] = from_eigen(l1, l2, e.c, e.s);
+    }
+    return out;
+  };
+  if (!(sc.complexity > 0)) return bounded(2.0 / 9.0 / sc.tolerance);
+  const double integral = complexity(m);
+  if (!(integral > 0)) throw InputError("metric scaling to a complexity needs a mesh with triangles");
+  // The bounds move the complexity off the target where they bind (a flat
+  // field at h_max, a front at h_min): the factor is corrected until the
+  // bounded metric reaches it (fixed point g <- g N / N(g); N(g) grows with
+  // g, and only the unbound vertices answer, so a few steps suffice). When
+  // the bounds decide everything it cannot move, and the last try is kept.
+  double global = sc.complexity / integral;
+  std::vector<Metric> out = bounded(global);
+  for (int step = 0; step < 30; ++step) {
+    const double got = complexity(out);
+    if (!(got > 0) || std::fabs(got - sc.complexity) <= 1e-9 * sc.complexity) break;
+    const double next = global * sc.complexity / got;
+    if (!std::isfinite(next) || next == global) break;
+    global = next;
+    out = bounded(global);
   }
-  for (std::size_t i = 0; i < n; ++i) {
-    const Eigen2 e = eigen(adaptation::scaled(m[i], global));
-    double l2 = std::clamp(e.l2, lmin, lmax);
-    double l1 = std::clamp(e.l1, lmin, lmax);
-    l1 = std::max(l1, l2 / (sc.max_aspect * sc.max_aspect));
-    m[i] = from_eigen(l1, l2, e.c, e.s);
-  }
-  return m;
+  return out;
 }
 
 int gradate_metric(const Mesh& mesh, std::vector<Metric>& m, double beta) {

@@ -85,14 +85,17 @@ void Refiner::insert_interior(const Point& c, TriId seed) {
   ++st_.interior_points;
   const std::size_t n = bnd_.size();
   fan_.resize(n);
-  if (perturb_ == 2) [[unlikely]] {  // the test hook (queue.hpp): slots sorted, the fan from its lowest vertex
-    std::vector<TriId> slots(cav_.tris());
-    std::sort(slots.begin(), slots.end());
-    for (std::size_t i = 0; i < n; ++i) fan_[i] = i < slots.size() ? slots[i] : new_slot(v);
+  for (std::size_t i = 0; i < n; ++i) fan_[i] = i < cav_.size() ? cav_[i] : new_slot(v);
+  // The fan in slot order from the cavity's lowest-numbered boundary
+  // vertex: the result depends on the cavity only, not on the triangle its
+  // search started from. A point on an edge (a right triangle's
+  // circumcentre) is found on either side by rounding, and a copy of the
+  // input scaled by 10^k must still get the same queue order and numbering.
+  // (The test hook's 2 keeps the search's order: another order, same work.)
+  if (perturb_ != 2) [[likely]] {
+    std::sort(fan_.begin(), fan_.begin() + static_cast<std::ptrdiff_t>(std::min(n, cav_.size())));
     const auto lowest = std::min_element(bnd_.begin(), bnd_.end(), [](const BoundaryEdge& x, const BoundaryEdge& y) { return x.a < y.a; });
     std::rotate(bnd_.begin(), lowest, bnd_.end());
-  } else {
-    for (std::size_t i = 0; i < n; ++i) fan_[i] = i < cav_.size() ? cav_[i] : new_slot(v);
   }
   // Vertices whose out-edge lies in the cavity get the fan's outer edge.
   for (std::size_t i = 0; i < n; ++i) {

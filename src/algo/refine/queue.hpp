@@ -19,8 +19,9 @@ constexpr int kBuckets = 2048;
 // Test hook (tests/test_refine_hubs.cpp), 0 everywhere else: another order
 // of the same work, to check that the small-angle rules do not depend on
 // luck of order. 1: the bucket bounds move by a relative 2^-40 (keys just
-// below a bound change bucket); 2: each new fan is written from the lowest
-// slot and the lowest vertex id (insert.cpp). Read once per refinement.
+// below a bound change bucket); 2: each new fan is written in the cavity
+// search's order, not from the lowest slot and vertex id (insert.cpp). Read
+// once per refinement.
 inline int order_perturbation_for_tests = 0;
 
 // Bucket of a skinny triangle, shortest edge first (RefineOrder::
@@ -30,7 +31,11 @@ inline int order_perturbation_for_tests = 0;
 // worst first.
 inline int shortest_edge_key(double shortest2) {
   int ex;
-  const double f = std::frexp(shortest2, &ex);  // shortest2 = f 2^ex, f in [0.5, 1)
+  // A length exactly on a bucket bound (round input coordinates make such
+  // ties common) is, in a copy of the input scaled by 10^k, a few ulps to
+  // either side of it: the 2^-40 nudge up sends both to the upper bucket,
+  // where the exact value goes, so the order does not depend on the scale.
+  const double f = std::frexp(shortest2 * (1 + 0x1p-40), &ex);  // = f 2^ex, f in [0.5, 1)
   return std::clamp(3 * (ex + 340) + (f < 0.63 ? 0 : (f < 0.794 ? 1 : 2)), 0, kBuckets - 1);
 }
 
