@@ -357,7 +357,10 @@ TEST(Regress, AdaptSteinerBudgetCoversTheRefinementAfterSmoothing) {
   ASSERT_TRUE(dm::check(m, {.convex_hull = false}).ok());
   dm::AdaptOptions ao;
   ao.refine.min_angle_deg = 25;
-  ao.refine.max_steiner = 200;
+  // 600 (200 before precision was measured by rounding alone, issue 20: the
+  // file's ulp-sized features now take refinement further, and with 200 the
+  // first refinement took the whole budget).
+  ao.refine.max_steiner = 600;
   ao.smooth_passes = 3;
   const dm::AdaptStats st = dm::adapt(m, [](double, double) { return 1e12; }, ao);
   const dm::CheckReport rep = dm::check(m, {.convex_hull = false});

@@ -12,6 +12,8 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <random>
+#include <set>
 #include <sstream>
 #include <string>
 #include <utility>
@@ -281,22 +283,47 @@ TEST(Scale, SmallFeaturesFarBelowTheDomainReachTheBound) {
   EXPECT_GE(min_angle(m.mesh), 20.0);
 }
 
-// Unit features 1e15 from the origin: an edge of 1 between coordinates of
-// 1e15 is 2^-50 of them, below the precision floor (2^-40): refinement
-// cannot place points there. Incomplete, with the count and the place.
-TEST(Scale, UnitFeaturesAtAHugeOffsetAreReportedAtThePrecisionOfDoubles) {
+// Points 1e15 from the origin on the lattice of doubles there (spacing
+// 1/8), at random: edges of a few ulps, where off-centres and split points
+// round onto vertices.
+Pslg lattice_points_at_offset() {
+  Pslg p;
+  std::mt19937 rng(3);
+  std::set<std::pair<int, int>> seen;
+  while (seen.size() < 40) seen.insert({int(rng() % 32), int(rng() % 32)});
+  for (const auto& [i, j] : seen) p.points.push_back({1e15 + 0.125 * i, 1e15 + 0.125 * j});
+  return p;
+}
+
+// Precision is measured where the work is, by what rounding does. Unit
+// features 1e15 from the origin (an edge of 1 is 8 ulps there) still mesh:
+// their split points and off-centres land on distinct lattice points.
+TEST(Scale, UnitFeaturesAtAHugeOffsetMeshWhereTheLatticeAllows) {
   Pslg p;
   const double o = 1e15;
   p.points = {{o, o}, {o + 8, o}, {o + 8, o + 1}, {o + 1, o + 1}, {o + 0.5, o + 4}};
   for (VertexId i = 0; i < 5; ++i) p.segments.push_back({i, (i + 1) % 5, 1});
   const RunResult r = mesh("-pq30", p);
   expect_valid_scaled(r.mesh, -50);
+  EXPECT_TRUE(r.complete()) << r.stats.refine.summary();
+  EXPECT_EQ(r.stats.refine.below_precision, 0u);
+  // The one triangle left below 30 degrees is in the input's 7-degree corner.
+  EXPECT_EQ(r.stats.refine.below_bound, r.stats.refine.below_small_input_angle);
+}
+
+// Where every new vertex tried rounds onto a vertex or out of its cavity,
+// the run is incomplete, with the count and the place: the worst triangle's
+// shortest edge is a few ulps of its coordinates.
+TEST(Scale, UlpSizedFeaturesAtAHugeOffsetAreReportedAtThePrecisionOfDoubles) {
+  const RunResult r = mesh("-q30", lattice_points_at_offset());
+  expect_valid_scaled(r.mesh, -50);
   EXPECT_FALSE(r.complete());
   const RefineStats& st = r.stats.refine;
   EXPECT_GT(st.below_precision, 0u) << st.summary();
+  EXPECT_EQ(st.below_bound, st.below_precision) << st.summary();
   EXPECT_GT(st.precision_magnitude, 1e15);
-  EXPECT_LT(st.precision_edge, 9.0);
-  EXPECT_NEAR(st.precision_x, o, 10);
+  EXPECT_LT(st.precision_edge, 8 * 0.125);
+  EXPECT_NEAR(st.precision_x, 1e15, 4);
   EXPECT_NE(st.unmet().find("at the precision of doubles"), std::string::npos) << st.unmet();
 }
 
@@ -373,11 +400,12 @@ TEST(ExitCodes, SmallInputAnglesAloneAreNotAnUnmetBound) {
 TEST(ExitCodes, UnreachablePrecisionIsExitThreeNamingThePlace) {
   std::ostringstream f;
   f.precision(17);
-  const double o = 1e15;
-  f << "5 2 0 0\n1 " << o << " " << o << "\n2 " << o + 8 << " " << o << "\n3 " << o + 8 << " " << o + 1 << "\n4 "
-    << o + 1 << " " << o + 1 << "\n5 " << o + 0.5 << " " << o + 4 << "\n5 0\n1 1 2\n2 2 3\n3 3 4\n4 4 5\n5 5 1\n0\n";
-  const Cli r = run_cli("-pq30 off.poly", {{"off.poly", f.str()}});
+  const Pslg p = lattice_points_at_offset();
+  f << p.points.size() << " 2 0 0\n";
+  for (std::size_t i = 0; i < p.points.size(); ++i) f << i + 1 << " " << p.points[i].x << " " << p.points[i].y << "\n";
+  const Cli r = run_cli("-q30 off.node", {{"off.node", f.str()}});
   EXPECT_EQ(r.code, 3) << r.err;
   EXPECT_CONTAINS(r.err, "at the precision of doubles");
+  EXPECT_CONTAINS(r.err, "the worst near (1e+15, 1e+15)");
   EXPECT_CONTAINS(r.err, "would round onto its neighbours or out of its cavity");
 }

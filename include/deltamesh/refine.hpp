@@ -202,9 +202,9 @@ struct RefineStats {
 
   // Where the worst triangle left at the precision of doubles is (its
   // centroid), its shortest edge and the largest coordinate magnitude of its
-  // corners: below kPrecisionFloor of that magnitude no new vertex is
-  // distinct from its neighbours (valid when below_precision or
-  // too_large_precision is nonzero).
+  // corners: there every new vertex tried rounded onto a vertex or out of
+  // its cavity (valid when below_precision or too_large_precision is
+  // nonzero).
   double precision_x = 0.0, precision_y = 0.0, precision_edge = 0.0, precision_magnitude = 0.0;
 
   std::string summary() const;
@@ -212,12 +212,6 @@ struct RefineStats {
   // below 30°: 13 need a split -Y forbids"); empty when complete.
   std::string unmet() const;
 };
-
-// Edges shorter than this fraction of the largest coordinate magnitude of
-// their triangle are not split: a point placed on them would be within 2^16
-// units in the last place of their ends (doubles carry 2^-52), so rounding
-// bends segments and new triangles no longer meet the bound.
-inline constexpr double kPrecisionFloor = 0x1p-36;
 
 // Refines a carved, compacted constrained Delaunay triangulation in place:
 // constrained edges are the segments, boundary half-edges have twin kNone

@@ -317,13 +317,6 @@ void Refiner::decide(TriId t, Decision& d) {
     d.reason = Reason::SmallAngle;
     return;
   }
-  // The new point goes near the shortest edge (an off-centre, or a split of
-  // it): the precision that matters is at its ends.
-  const HalfEdgeId se = 3 * t + ev.shortest;
-  if (below_precision_floor(ev.shortest2, pts_[tv_[se]], pts_[tv_[next_edge(se)]])) {
-    d.reason = Reason::Precision;
-    return;
-  }
   d.c = steiner_point(t, ev, d.offcenter);
   if (!std::isfinite(d.c.x) || !std::isfinite(d.c.y)) {
     d.reason = Reason::Precision;
@@ -336,6 +329,8 @@ void Refiner::decide(TriId t, Decision& d) {
            : d.offcenter                   ? TraceReason::OffCentre
            : ev.skinny                     ? TraceReason::Circumcentre
                                            : TraceReason::Area;
+  // Precision is measured by what rounding does, where the work is: a point
+  // that rounds onto a vertex (or out of its cavity, below) is not inserted.
   const Walk w = walk(t, d.c);
   enc_scratch_.clear();
   switch (w.kind) {
@@ -379,8 +374,8 @@ void Refiner::decide(TriId t, Decision& d) {
 void Refiner::decide_segments(TriId t, const std::vector<HalfEdgeId>& enc, const Eval& ev, Decision& d) {
   Reason why = Reason::None;
   for (HalfEdgeId e : enc) {
-    if (!splittable(e)) {
-      why = Reason::Protected;
+    if (const Reason r = split_refusal(e); r != Reason::None) {
+      if (why != Reason::Protected) why = r;  // -Y's refusal is the one to name
       continue;
     }
     // The rule against cascades is for skinny triangles (as the small-angle

@@ -79,21 +79,21 @@ bool Refiner::encroached(HalfEdgeId e) const {
   return f != kNone && encroaches(a, b, pts_[tv_[prev_edge(f)]]);
 }
 
-// Subsegment e may be split: -Y/-YY allow it, and its split point is a new
-// point above the precision floor.
-bool Refiner::splittable(HalfEdgeId e) const {
-  if (fl_[e] & detail::kFrozenEdge) return false;  // a cut of refine_in_parts
+// Subsegment e may be split when -Y/-YY allow it (Protected otherwise)
+// and its split point is a new point (Precision: it rounds onto an end).
+Reason Refiner::split_refusal(HalfEdgeId e) const {
+  if (fl_[e] & detail::kFrozenEdge) return Reason::Protected;  // a cut of refine_in_parts
   switch (opt_.segment_splitting) {
     case SegmentSplitting::All: break;
     case SegmentSplitting::InteriorOnly:
-      if (tw_[e] == kNone) return false;
+      if (tw_[e] == kNone) return Reason::Protected;
       break;
-    case SegmentSplitting::None: return false;
+    case SegmentSplitting::None: return Reason::Protected;
   }
   const Point& a = pts_[tv_[e]];
   const Point& b = pts_[tv_[next_edge(e)]];
   const Point m = segment_split_point(tv_[e], tv_[next_edge(e)]);
-  return !(m == a || m == b) && !below_precision_floor(dist2(a, b), a, b);
+  return m == a || m == b ? Reason::Precision : Reason::None;
 }
 
 // R1's trigger after an insertion: subsegment e (if it is one) is pushed on

@@ -149,15 +149,9 @@ class Refiner {
   std::vector<std::uint8_t> bad_slots() const;
   std::vector<std::uint8_t> first_bad_;
   std::vector<VertexId> first_tv_;
-  // Precision, measured where the edge is (not over the domain): an edge
-  // ab of squared length len2 is too short to split when below
-  // kPrecisionFloor of the largest coordinate magnitude of a and b; a point
-  // on or beside it would lie within 2^16 ulps of its ends.
-  static bool below_precision_floor(double len2, const Point& a, const Point& b) {
-    const double mag = std::max(std::max(std::fabs(a.x), std::fabs(a.y)), std::max(std::fabs(b.x), std::fabs(b.y))) *
-                       kPrecisionFloor;
-    return len2 < mag * mag;
-  }
+  // Why subsegment e may not be split: Reason::None when it may.
+  Reason split_refusal(HalfEdgeId e) const;
+  bool splittable(HalfEdgeId e) const { return split_refusal(e) == Reason::None; }
   // A new coordinate below the exact predicates' smallest magnitude
   // (kMinCoordinate) is rounded to 0: a move far below the floor above.
   static Point within_predicate_range(Point p) {
@@ -191,7 +185,6 @@ class Refiner {
     return dot * dot > lens_cos2_ * (ax * ax + ay * ay) * (bx * bx + by * by);
   }
   bool encroached(HalfEdgeId e) const;
-  bool splittable(HalfEdgeId e) const;
   void push_if_encroached(HalfEdgeId e, VertexId apex);
   Point segment_split_point(VertexId a, VertexId b) const;
   bool keep_split_inside(HalfEdgeId e, Point& m) const;

@@ -140,8 +140,7 @@ std::string RefineStats::unmet() const {
   if (below_precision || too_large_precision)
     out << sep << "precision: the worst near (" << precision_x << ", " << precision_y << ") has a shortest edge of "
         << precision_edge << " at coordinates of magnitude " << precision_magnitude
-        << ": a new vertex there would round onto its neighbours or out of its cavity (edges below 2^-36 of their "
-           "coordinates are not split)";
+        << ": a new vertex there would round onto its neighbours or out of its cavity";
   return out.str();
 }
 
