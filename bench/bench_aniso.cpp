@@ -11,7 +11,7 @@
 //
 //   bench_aniso [--functions front,layer,cross] [--n 250,500,...] [--methods iso,aniso] [--iterations 5]
 //               [--svg DIR] [--svg-n N] [--gmsh DIR] [--gradation BETA] [--quadrature K]
-//               [--trace 1] [--hessian exact]
+//               [--trace 1] [--hessian exact] [--bands 1]
 //
 // --svg: pictures of the meshes at N = --svg-n (default 2000). --gradation:
 // gradate_metric's beta for both methods (default 2). --quadrature: K x K
@@ -19,7 +19,12 @@
 // to 6 digits with K = 16 on the front at N = 250). Diagnostics: --trace 1
 // prints, per iteration, the metric's complexity before and after
 // gradation and the mesh's error on stderr; --hessian exact replaces the
-// recovered Hessian by central differences of the function itself.
+// recovered Hessian by central differences of the function itself;
+// --bands 1 (front only) prints, for the last mesh, triangles and squared
+// error by distance of the centroid to the front's centre line (< 0.02,
+// 0.02-0.05, beyond) and x decile, and per band the triangles against the
+// metric's own count (area in the metric over that of a unit equilateral
+// triangle) and the mean metric edge length.
 //
 // Output: CSV on stdout, one row per (function, method, N) after the last
 // iteration; every mesh of every iteration goes through check().
@@ -89,6 +94,7 @@ struct Error {
 // sub-triangles.
 int quadrature_k = 4;
 bool trace = false;
+bool bands = false;
 bool exact_hessian = false;
 
 Error interpolation_error(const dm::Mesh& m, const Function& fn) {
@@ -136,6 +142,64 @@ Error interpolation_error(const dm::Mesh& m, const Function& fn) {
   }
   e.l2 = std::sqrt(sq);
   return e;
+}
+
+// The front's distance band (0: within 0.02 of y = 0.5 + 0.25 sin 2 pi x,
+// vertically; 1: within 0.05; 2: beyond) of a triangle's centroid.
+int front_band(const dm::Point& c) {
+  const double d = std::fabs(c.y - 0.5 - 0.25 * std::sin(2 * M_PI * c.x));
+  return d < 0.02 ? 0 : d < 0.05 ? 1 : 2;
+}
+
+// --bands: where the triangles and the squared error of the front's mesh
+// are, and how closely each band's mesh follows its metric.
+void print_bands(const dm::Mesh& m, const Function& fn, const dm::MetricField& field) {
+  const std::vector<double> u = values(m, fn);
+  double err[10][3] = {}, ideal[3] = {}, len[3] = {}, total = 0;
+  int count[10][3] = {}, per_band[3] = {};
+  const int k = quadrature_k;
+  for (dm::TriId t = 0; t < m.num_triangle_slots(); ++t) {
+    if (!m.is_real(t)) continue;
+    const auto v = m.triangle(t);
+    const dm::Point &a = m.point(v[0]), &b = m.point(v[1]), &c = m.point(v[2]);
+    const dm::Point g{(a.x + b.x + c.x) / 3, (a.y + b.y + c.y) / 3};
+    const double area = 0.5 * std::fabs((b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x));
+    // Squared error by the midpoint rule on k x k sub-triangles (a bin's
+    // share, not the reported L2 error).
+    double sq = 0;
+    for (int i = 0; i < k; ++i)
+      for (int j = 0; i + j < k; ++j)
+        for (int up = 0; up < (i + j < k - 1 ? 2 : 1); ++up) {
+          const double s = (i + (up ? 2.0 / 3 : 1.0 / 3)) / k, r = (j + (up ? 2.0 / 3 : 1.0 / 3)) / k;
+          const double x = a.x + s * (b.x - a.x) + r * (c.x - a.x), y = a.y + s * (b.y - a.y) + r * (c.y - a.y);
+          const double d = fn.f(x, y) - ((1 - s - r) * u[v[0]] + s * u[v[1]] + r * u[v[2]]);
+          sq += d * d;
+        }
+    sq *= area / (k * k);
+    const int band = front_band(g), dec = std::clamp(int(g.x * 10), 0, 9);
+    err[dec][band] += sq;
+    ++count[dec][band];
+    ++per_band[band];
+    total += sq;
+    const dm::Metric mg = field(g.x, g.y);
+    ideal[band] += area * std::sqrt(mg.m11 * mg.m22 - mg.m12 * mg.m12) / (std::sqrt(3.0) / 4);
+    for (int i = 0; i < 3; ++i) {
+      const dm::Point &p = m.point(v[i]), &q = m.point(v[(i + 1) % 3]);
+      len[band] += dm::edge_length_in_metrics(p, q, field(p.x, p.y), field(q.x, q.y)) / 3;
+    }
+  }
+  std::fprintf(stderr, "  triangles / %% of squared error by x decile, bands < 0.02 | 0.02-0.05 | beyond:\n");
+  for (int i = 0; i < 10; ++i) {
+    std::fprintf(stderr, "   x %.1f:", i / 10.0);
+    for (int j = 0; j < 3; ++j) std::fprintf(stderr, " %5d / %5.1f", count[i][j], 100 * err[i][j] / total);
+    std::fprintf(stderr, "\n");
+  }
+  for (int j = 0; j < 3; ++j) {
+    double e = 0;
+    for (int i = 0; i < 10; ++i) e += err[i][j];
+    std::fprintf(stderr, "  band %d: %d triangles (%.2f per unit of metric area), %.1f%% of the error, mean length %.3f\n",
+                 j, per_band[j], per_band[j] / ideal[j], 100 * e / total, len[j] / per_band[j]);
+  }
 }
 
 dm::Metric isotropic_part(const dm::Metric& h) {
@@ -310,6 +374,7 @@ int main(int argc, char** argv) {
     else if (a == "--quadrature") quadrature_k = std::atoi(v.c_str());
     else if (a == "--trace") trace = v == "1";
     else if (a == "--hessian") exact_hessian = v == "exact";
+    else if (a == "--bands") bands = v == "1";
     else {
       std::fprintf(stderr, "bench_aniso: unknown option %s\n", a.c_str());
       return 2;
@@ -355,6 +420,10 @@ int main(int argc, char** argv) {
             std::fprintf(stderr, "%s %s N=%d it %d: %zu triangles, l2 %.4g, within %.3f\n", fn.name.c_str(), method,
                          int(n), it, m.num_triangles(), ie.l2, fit.within);
           }
+        }
+        if (bands && fn.name == "front") {
+          std::fprintf(stderr, "%s %s N=%d:\n", fn.name.c_str(), method, int(n));
+          print_bands(m, fn, dm::metric_field_from_vertices(bg, met));
         }
         const Error e = interpolation_error(m, fn);
         std::printf("%s,%s,%d,%zu,%zu,%.6g,%.6g,%.4f,%.4f,%.4f,%.4f,%.3f\n", fn.name.c_str(), method, int(n),
