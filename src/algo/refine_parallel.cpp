@@ -46,6 +46,7 @@ struct Part {
   std::vector<VertexId> global;  // part vertex (those it started with) -> whole-mesh vertex
   std::vector<std::uint64_t> cuts;  // the temporary segments (whole-mesh ids, one direction each)
   RefineStats stats;
+  RefineStage stage;  // keeps the final verdict per slot: the last pass's first look
 };
 
 // The triangles of `whole` in slab `j` (slab[t] == j) as a mesh of their
@@ -123,7 +124,8 @@ void cut_part(const Mesh& whole, const std::vector<std::uint32_t>& slab, const s
 // The parts back in one mesh: the whole mesh's vertices keep their ids, the
 // parts' new vertices follow part by part; boundary half-edges are paired by
 // their vertices, and the temporary segments become ordinary edges again.
-Mesh stitch(const Mesh& whole, std::vector<Part>& parts, unsigned threads, std::vector<HalfEdgeId>& cut_edges) {
+Mesh stitch(const Mesh& whole, std::vector<Part>& parts, unsigned threads, std::vector<HalfEdgeId>& cut_edges,
+           std::vector<std::uint8_t>& first_look) {
   const std::size_t n0 = whole.num_vertices(), na = whole.num_vertex_attributes(),
                     ta = whole.num_triangle_attributes();
   std::vector<std::size_t> vbase(parts.size() + 1, n0), tbase(parts.size() + 1, 0);
@@ -160,11 +162,16 @@ Mesh stitch(const Mesh& whole, std::vector<Part>& parts, unsigned threads, std::
   fl.reserve(room);
   mk.reserve(room);
   MeshEditor(out).points().reserve(nv + nv / 16);
+  MeshEditor(out).out_edges().reserve(nv + nv / 16);
   tv.resize(3 * nt);
   tw.resize(3 * nt);
   fl.assign(3 * nt, 0);
   mk.assign(3 * nt, 0);
   std::vector<double> area_bounds(bounds ? nt : 0, -1.0);
+  const bool looks = std::all_of(parts.begin(), parts.end(), [](const Part& p) {
+    return p.stage.final_bad.size() == p.mesh.num_triangle_slots();
+  });
+  first_look.assign(looks ? nt : 0, 0);
   std::vector<std::vector<HalfEdgeId>> open(parts.size());
   run_tasks(parts.size(), threads, [&](std::size_t j) {
     const Mesh& m = parts[j].mesh;
@@ -196,6 +203,7 @@ Mesh stitch(const Mesh& whole, std::vector<Part>& parts, unsigned threads, std::
       out.triangle_attributes()[tbase[j] * ta + k] = m.triangle_attributes()[k];
     if (bounds)
       for (TriId t = 0; t < m.num_triangle_slots(); ++t) area_bounds[tbase[j] + t] = m.triangle_area_bound(t);
+    if (looks) std::copy(parts[j].stage.final_bad.begin(), parts[j].stage.final_bad.end(), first_look.begin() + tbase[j]);
   });
   std::unordered_set<std::uint64_t> cuts;
   std::unordered_map<std::uint64_t, HalfEdgeId> by_vertices;
@@ -230,6 +238,20 @@ Mesh stitch(const Mesh& whole, std::vector<Part>& parts, unsigned threads, std::
   MeshEditor(out).set_compacted();
   return out;
 }
+
+// The mesh's own flips, noting the slots they rewrite: the parts' verdicts
+// on those no longer hold.
+class NotingTopology : public MeshTopology {
+ public:
+  NotingTopology(Mesh& m, std::vector<std::uint8_t>& look) : MeshTopology(m), look_(look) {}
+  void flip(const FlipQuad& q, TraceReason why) {
+    MeshTopology::flip(q, why);
+    if (!look_.empty()) look_[tri_of(q.e)] = look_[tri_of(q.f)] = kLookAgain;
+  }
+
+ private:
+  std::vector<std::uint8_t>& look_;
+};
 
 void add_counts(RefineStats& to, const RefineStats& from) {
   to.segment_splits += from.segment_splits;
@@ -275,6 +297,7 @@ std::optional<RefineStats> refine_in_parts(Mesh& mesh, const RefineOptions& opti
   coarse.min_angle_deg = 0;
   RefineStats total = refine_scanning(mesh, coarse, threads);
   const bool cut = total.complete;  // else the coarse stage met a limit: finish sequentially
+  RefineStage last_stage;
 
   if (cut) {
     // Slabs by centroid x, at quantiles of the triangles' centroids.
@@ -302,19 +325,26 @@ std::optional<RefineStats> refine_in_parts(Mesh& mesh, const RefineOptions& opti
     std::vector<Part> pieces(parts);
     run_tasks(parts, threads, [&](std::size_t j) {
       cut_part(mesh, slab, index, static_cast<std::uint32_t>(j), pieces[j]);
-      if (pieces[j].mesh.num_triangles() > 0) pieces[j].stats = refine(pieces[j].mesh, one);
+      Part& p = pieces[j];
+      if (p.mesh.num_triangles() == 0) return;
+      // refine() on one thread (the part is compact and within the
+      // predicates' range, as the whole is), keeping its final verdicts.
+      canonical_triangle_order(p.mesh);
+      p.stage.keep_final_bad = true;
+      p.stats = refine_scanning(p.mesh, one, 1, &p.stage);
     });
     for (const Part& p : pieces) add_counts(total, p.stats);
     std::vector<HalfEdgeId> cut_edges;
-    mesh = stitch(mesh, pieces, threads, cut_edges);
+    mesh = stitch(mesh, pieces, threads, cut_edges, last_stage.first_look);
     // Each part is a constrained Delaunay triangulation: only edges whose
     // triangles come from different parts (the cuts) can fail the
     // empty-circle test, and then the edges their flips make.
-    MeshTopology topo(mesh);
+    NotingTopology topo(mesh, last_stage.first_look);
     constrained_lawson(topo, cut_edges);
+    last_stage.reserve = false;  // the stitch has
   }
   one.progress = options.progress;
-  RefineStats last = refine_scanning(mesh, one, threads);
+  RefineStats last = refine_scanning(mesh, one, threads, &last_stage);
   add_counts(last, total);
   last.input_vertices = input_vertices;
   last.steiner_points = mesh.num_vertices() - input_vertices;

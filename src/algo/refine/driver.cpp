@@ -44,13 +44,11 @@ void Refiner::run() {
   setup();
   queue_encroached();
   const std::size_t nt = tv_.size() / 3;
-  std::vector<std::uint8_t> bad = bad_slots();  // consider() queues only bad ones
+  std::vector<std::uint8_t> bad =
+      stage_ && stage_->first_look.size() == nt ? first_look() : bad_slots();  // consider() queues only bad ones
   for (TriId t = 0; t < nt; ++t)
     if (bad.empty() || bad[t]) consider(t);
-  if (!bad.empty() && !has_area_bounds_) {  // finish() re-evaluates only the slots refinement rewrites
-    first_bad_ = std::move(bad);
-    first_tv_ = tv_;
-  }
+  if (!bad.empty() && !has_area_bounds_) first_bad_ = std::move(bad);  // finish() re-evaluates only rewritten slots
   ProgressReporter progress(opt_.progress, "refine", "Steiner points");
   refine_loop(progress);
   if (beyond_ && !stopped_) go_beyond(progress);  // beyond.cpp
@@ -187,7 +185,7 @@ void Refiner::reserve_for_area_bounds() {
   // with a small budget asked for gigabytes up front (found by fuzz_mesh).
   constexpr std::size_t kMaxReserve = std::size_t{1} << 23;
   want_t = std::min({want_t, nt + 2 * std::min(budget_, kMaxReserve), kMaxReserve});
-  if (want_t > nt) {
+  if (want_t > nt && (!stage_ || stage_->reserve)) {
     m_.reserve(pts_.size() + want_t / 2 + 16, want_t + 16);
     fl_.reserve(3 * (want_t + 16));
     if (has_markers_) mk_.reserve(3 * (want_t + 16));
@@ -443,7 +441,7 @@ using refinement::Refiner;
 
 namespace detail {
 
-RefineStats refine_scanning(Mesh& mesh, const RefineOptions& options, unsigned scan_threads) {
+RefineStats refine_scanning(Mesh& mesh, const RefineOptions& options, unsigned scan_threads, RefineStage* stage) {
   RefineStats stats;
   if (!mesh.compacted()) mesh.compact();
   stats.input_vertices = mesh.num_vertices();
@@ -451,10 +449,14 @@ RefineStats refine_scanning(Mesh& mesh, const RefineOptions& options, unsigned s
   if (mesh.num_triangles() == 0) return stats;
   Refiner r(mesh, options, stats);
   r.set_scan_threads(scan_threads);
+  r.set_stage(stage);
   r.run();
   // Mesh::add_triangle (used when triangles carry bounds or attributes)
   // clears the compacted flag; the mesh has no dead or ghost slots.
-  if (!mesh.compacted()) mesh.compact();
+  if (!mesh.compacted()) {
+    mesh.compact();
+    if (stage) stage->final_bad.clear();  // (in case it moved a slot)
+  }
   return stats;
 }
 

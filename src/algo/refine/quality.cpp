@@ -60,6 +60,7 @@ Eval Refiner::eval(TriId t, const Point& a, const Point& b, const Point& c) cons
 // others as too large); a rewritten slot forgets why it was left alone.
 void Refiner::consider(TriId t) {
   if (t < why_.size()) why_[t] = Reason::None;
+  if (t < first_bad_.size()) first_bad_[t] = detail::kLookAgain;  // finish() evaluates it again
   const Eval ev = eval(t);
   if (!ev.skinny && !ev.large) return;
   const QueueEntry q{t, tv_[3 * t], tv_[3 * t + 1], tv_[3 * t + 2]};
@@ -73,13 +74,12 @@ std::vector<std::uint8_t> Refiner::bad_slots() const {
   std::vector<std::uint8_t> bad;
   if (scan_threads_ < 2 || opt_.max_area_at || opt_.max_edge_at) return bad;
   const std::size_t nt = tv_.size() / 3, chunks = 4 * std::size_t{scan_threads_};
-  const std::size_t before = first_tv_.size() / 3;  // slots as the first look saw them (run())
+  const std::size_t before = first_bad_.size();  // slots as the first look saw them (run())
   bad.resize(nt);
   detail::run_tasks(chunks, scan_threads_, [&](std::size_t i) {
     for (std::size_t t = nt * i / chunks; t < nt * (i + 1) / chunks; ++t) {
       if (tv_[3 * t] >= pts_.size()) continue;  // a dead or ghost slot: never bad
-      if (t < before && tv_[3 * t] == first_tv_[3 * t] && tv_[3 * t + 1] == first_tv_[3 * t + 1] &&
-          tv_[3 * t + 2] == first_tv_[3 * t + 2]) {  // the same triangle (no size callbacks or per-triangle bounds)
+      if (t < before && first_bad_[t] != detail::kLookAgain) {  // the same triangle (no size callbacks or per-triangle bounds)
         bad[t] = first_bad_[t];
         continue;
       }
@@ -87,6 +87,19 @@ std::vector<std::uint8_t> Refiner::bad_slots() const {
       bad[t] = ev.skinny || ev.large;
     }
   });
+  return bad;
+}
+
+// The first look of refine_in_parts' last pass: the parts' final verdicts
+// (the same triangles, evaluated the same way), and eval() for the slots the
+// stitch's flips rewrote.
+std::vector<std::uint8_t> Refiner::first_look() const {
+  std::vector<std::uint8_t> bad = std::move(stage_->first_look);
+  for (std::size_t t = 0; t < bad.size(); ++t)
+    if (bad[t] == detail::kLookAgain) {
+      const Eval ev = eval(static_cast<TriId>(t));
+      bad[t] = ev.skinny || ev.large;
+    }
   return bad;
 }
 

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "algo/refine/queue.hpp"
+#include "algo/refine_parallel.hpp"
 #include "deltamesh/mesh.hpp"
 #include "deltamesh/predicates.hpp"
 #include "deltamesh/progress.hpp"
@@ -94,6 +95,9 @@ class Refiner {
   // the statistics); the result is the same for any count. Only without
   // callbacks, which would be called concurrently (refine_in_parts' last pass).
   void set_scan_threads(unsigned threads) { scan_threads_ = threads; }
+  // A stage of refine_in_parts (refine_parallel.hpp): a first look given,
+  // the final verdicts kept, no reserve.
+  void set_stage(detail::RefineStage* stage) { stage_ = stage; }
 
  private:
   // ---- driver.cpp: setup, the R1/R2 loop, decisions ----------------------
@@ -144,11 +148,12 @@ class Refiner {
   }
   void consider(TriId t);
   // Per triangle slot, 1 when eval() finds it bad; empty on one scan thread.
-  // After the first look (first_bad_, first_tv_ kept by run()), slots that
-  // still hold the same triangle are not evaluated again.
+  // After the first look (first_bad_ kept by run()), slots that consider()
+  // has not seen since (it sees every rewritten slot and marks it
+  // kLookAgain) are not evaluated again.
   std::vector<std::uint8_t> bad_slots() const;
+  std::vector<std::uint8_t> first_look() const;  // from stage_
   std::vector<std::uint8_t> first_bad_;
-  std::vector<VertexId> first_tv_;
   // Precision, measured where the edge is (not over the domain): an edge
   // ab of squared length len2 is too short to split when below
   // kPrecisionFloor of the largest coordinate magnitude of a and b; a point
@@ -319,6 +324,7 @@ class Refiner {
   std::size_t budget_ = kUnlimited;
   std::size_t n_input_ = 0;
   unsigned scan_threads_ = 1;
+  detail::RefineStage* stage_ = nullptr;
 
   // Input segments (the constrained edges when refinement starts).
   std::vector<std::array<VertexId, 2>> segs_;
