@@ -155,6 +155,22 @@ Mesh stitch(const Mesh& whole, std::vector<Part>& parts, unsigned threads, std::
   std::vector<HalfEdgeId>& tw = MeshEditor(out).twins();
   std::vector<std::uint8_t>& fl = MeshEditor(out).edge_flags();
   std::vector<int>& mk = MeshEditor(out).edge_markers();
+  const bool looks = std::all_of(parts.begin(), parts.end(), [](const Part& p) {
+    return p.stage.final_bad.size() == p.mesh.num_triangle_slots();
+  });
+  // The first part's triangle arrays become the result's (refine_in_parts
+  // reserved them for the whole mesh): its slots keep their place, only its
+  // vertex ids change, and the other parts are copied behind it. A copy of
+  // them cost a pass over half the mesh, and as much fresh memory.
+  Mesh& first = parts[0].mesh;
+  const std::size_t slots0 = tbase[1];
+  const bool in_place = MeshEditor(first).edge_flags().size() == 3 * slots0 && MeshEditor(first).edge_markers().size() == 3 * slots0;
+  if (in_place) {
+    tv.swap(MeshEditor(first).triangle_vertices());
+    tw.swap(MeshEditor(first).twins());
+    fl.swap(MeshEditor(first).edge_flags());
+    mk.swap(MeshEditor(first).edge_markers());
+  }
   // Room for the last refinement, which adds a few percent.
   const std::size_t room = 3 * (nt + nt / 16);
   tv.reserve(room);
@@ -165,12 +181,9 @@ Mesh stitch(const Mesh& whole, std::vector<Part>& parts, unsigned threads, std::
   MeshEditor(out).out_edges().reserve(nv + nv / 16);
   tv.resize(3 * nt);
   tw.resize(3 * nt);
-  fl.assign(3 * nt, 0);
-  mk.assign(3 * nt, 0);
+  fl.resize(3 * nt, 0);
+  mk.resize(3 * nt, 0);
   std::vector<double> area_bounds(bounds ? nt : 0, -1.0);
-  const bool looks = std::all_of(parts.begin(), parts.end(), [](const Part& p) {
-    return p.stage.final_bad.size() == p.mesh.num_triangle_slots();
-  });
   first_look.assign(looks ? nt : 0, 0);
   std::vector<std::vector<HalfEdgeId>> open(parts.size());
   run_tasks(parts.size(), threads, [&](std::size_t j) {
@@ -187,8 +200,14 @@ Mesh stitch(const Mesh& whole, std::vector<Part>& parts, unsigned threads, std::
         for (std::size_t k = 0; k < na; ++k)
           out.vertex_attributes()[std::size_t{g} * na + k] = m.vertex_attributes()[std::size_t{v} * na + k];
     }
-    const std::size_t base = 3 * tbase[j];
-    for (HalfEdgeId e = 0; e < 3 * m.num_triangle_slots(); ++e) {
+    const std::size_t base = 3 * tbase[j], slots = tbase[j + 1] - tbase[j];
+    if (j == 0 && in_place) {
+      for (HalfEdgeId e = 0; e < 3 * slots; ++e) {
+        tv[e] = id(tv[e]);
+        if (tw[e] == kNone) open[0].push_back(e);
+      }
+    }
+    for (HalfEdgeId e = 0; e < 3 * slots && !(j == 0 && in_place); ++e) {
       tv[base + e] = id(m.origin(e));
       fl[base + e] = m.edge_flags(e);
       mk[base + e] = m.edge_marker(e);
@@ -199,10 +218,10 @@ Mesh stitch(const Mesh& whole, std::vector<Part>& parts, unsigned threads, std::
         tw[base + e] = static_cast<HalfEdgeId>(base + m.twin(e));
       }
     }
-    for (std::size_t k = 0; k < m.num_triangle_slots() * ta; ++k)
+    for (std::size_t k = 0; k < slots * ta; ++k)
       out.triangle_attributes()[tbase[j] * ta + k] = m.triangle_attributes()[k];
     if (bounds)
-      for (TriId t = 0; t < m.num_triangle_slots(); ++t) area_bounds[tbase[j] + t] = m.triangle_area_bound(t);
+      for (TriId t = 0; t < slots; ++t) area_bounds[tbase[j] + t] = m.triangle_area_bound(static_cast<TriId>(t));
     if (looks) std::copy(parts[j].stage.final_bad.begin(), parts[j].stage.final_bad.end(), first_look.begin() + tbase[j]);
   });
   std::unordered_set<std::uint64_t> cuts;
@@ -330,6 +349,13 @@ std::optional<RefineStats> refine_in_parts(Mesh& mesh, const RefineOptions& opti
       // refine() on one thread (the part is compact and within the
       // predicates' range, as the whole is), keeping its final verdicts.
       canonical_triangle_order(p.mesh);
+      if (j == 0) {  // its arrays become the stitched mesh's: room for all (address space, not memory, until used)
+        const std::size_t all = 3 * (static_cast<std::size_t>(1.5 * expected) + mesh.num_triangle_slots() + 1024);
+        MeshEditor(p.mesh).triangle_vertices().reserve(all);
+        MeshEditor(p.mesh).twins().reserve(all);
+        MeshEditor(p.mesh).edge_flags().reserve(all);
+        MeshEditor(p.mesh).edge_markers().reserve(all);
+      }
       p.stage.keep_final_bad = true;
       p.stats = refine_scanning(p.mesh, one, 1, &p.stage);
     });

@@ -168,6 +168,9 @@ double Refiner::area_ratio(TriId t, bool global) const {
 void Refiner::reserve_for_area_bounds() {
   const bool global = opt_.max_area > 0;
   if (!global && !has_area_bounds_) return;
+  // refine_in_parts' last pass: the stitch reserved room, and the estimate
+  // (a pass over every triangle) would only raise a budget of 50 per vertex.
+  if (stage_ && !stage_->reserve) return;
   double estimate = 0;
   const std::size_t nt = tv_.size() / 3;
   if (scan_threads_ > 1) estimate = area_estimate_in_parallel(global);  // setup_scan.cpp
@@ -185,7 +188,7 @@ void Refiner::reserve_for_area_bounds() {
   // with a small budget asked for gigabytes up front (found by fuzz_mesh).
   constexpr std::size_t kMaxReserve = std::size_t{1} << 23;
   want_t = std::min({want_t, nt + 2 * std::min(budget_, kMaxReserve), kMaxReserve});
-  if (want_t > nt && (!stage_ || stage_->reserve)) {
+  if (want_t > nt) {
     m_.reserve(pts_.size() + want_t / 2 + 16, want_t + 16);
     fl_.reserve(3 * (want_t + 16));
     if (has_markers_) mk_.reserve(3 * (want_t + 16));
