@@ -225,6 +225,11 @@ class Refiner {
   bool left_alone(const TriView& tv, bool holding) const;
   bool refuse_split_near_apex(HalfEdgeId e, const Eval& ev, TriId t) const;
   void measure_apex_feature_sizes();
+  bool apex_distance(HalfEdgeId e, double& d2) const;
+  void note_apex_distance(VertexId v, double d2) {
+    if (apex_lfs2_[v] == 0 || d2 < apex_lfs2_[v]) apex_lfs2_[v] = d2;
+  }
+  void apex_feature_sizes_in_parallel();  // setup_scan.cpp
   bool in_small_sector(VertexId apex, const Point& g) const;
   bool exempt_from_r1(HalfEdgeId e) const;
   void mirror_split(std::uint32_t seg, VertexId apex, double radius, int depth);

@@ -98,6 +98,20 @@ void Refiner::queue_encroached_in_parallel() {
   for (const auto& list : found) encroached_.insert(encroached_.end(), list.begin(), list.end());
 }
 
+// measure_apex_feature_sizes()' distances, found concurrently, noted in
+// half-edge order.
+void Refiner::apex_feature_sizes_in_parallel() {
+  const std::size_t chunks = chunk_count(scan_threads_);
+  std::vector<std::vector<std::pair<VertexId, double>>> found(chunks);
+  for_chunks(tv_.size(), scan_threads_, [&](std::size_t i, std::size_t lo, std::size_t hi) {
+    double d2;
+    for (std::size_t e = lo; e < hi; ++e)
+      if (apex_distance(static_cast<HalfEdgeId>(e), d2)) found[i].push_back({tv_[e], d2});
+  });
+  for (const auto& list : found)
+    for (const auto& [v, d2] : list) note_apex_distance(v, d2);
+}
+
 // reserve_for_area_bounds()'s estimate, summed by chunks.
 double Refiner::area_estimate_in_parallel(bool global) const {
   const std::size_t nt = tv_.size() / 3, chunks = chunk_count(scan_threads_);
