@@ -88,7 +88,11 @@ void cut_part(const Mesh& whole, const std::vector<std::uint32_t>& slab, const s
   tv.resize(3 * nt);
   tw.resize(3 * nt);
   fl.assign(3 * nt, 0);
-  mk.assign(3 * nt, 0);
+  // Edge markers only when the whole has them: all-zero markers are the
+  // same to every reader, but cost 4 bytes per half-edge, their copies, and
+  // passes that skip meshes without them (finish_vertex_markers).
+  const bool edge_markers = whole.has_edge_markers();
+  if (edge_markers) mk.assign(3 * nt, 0);
   m.set_num_triangle_attributes(ta);
   m.triangle_attributes().resize(nt * ta);
   for (std::size_t i = 0; i < nt; ++i) {
@@ -97,7 +101,7 @@ void cut_part(const Mesh& whole, const std::vector<std::uint32_t>& slab, const s
       const HalfEdgeId e = 3 * t + c, f = static_cast<HalfEdgeId>(3 * i + c), o = whole.twin(e);
       tv[f] = local[whole.origin(e)];
       fl[f] = whole.edge_flags(e);
-      mk[f] = whole.edge_marker(e);
+      if (edge_markers) mk[f] = whole.edge_marker(e);
       if (o == kNone) {
         tw[f] = kNone;
       } else if (slab[tri_of(o)] == j) {
@@ -164,7 +168,9 @@ Mesh stitch(const Mesh& whole, std::vector<Part>& parts, unsigned threads, std::
   // them cost a pass over half the mesh, and as much fresh memory.
   Mesh& first = parts[0].mesh;
   const std::size_t slots0 = tbase[1];
-  const bool in_place = MeshEditor(first).edge_flags().size() == 3 * slots0 && MeshEditor(first).edge_markers().size() == 3 * slots0;
+  const bool edge_markers = whole.has_edge_markers();  // (the parts have them when the whole has)
+  const bool in_place = MeshEditor(first).edge_flags().size() == 3 * slots0 &&
+                        MeshEditor(first).edge_markers().size() == (edge_markers ? 3 * slots0 : 0);
   if (in_place) {
     tv.swap(MeshEditor(first).triangle_vertices());
     tw.swap(MeshEditor(first).twins());
@@ -176,13 +182,13 @@ Mesh stitch(const Mesh& whole, std::vector<Part>& parts, unsigned threads, std::
   tv.reserve(room);
   tw.reserve(room);
   fl.reserve(room);
-  mk.reserve(room);
+  if (edge_markers) mk.reserve(room);
   MeshEditor(out).points().reserve(nv + nv / 16);
   MeshEditor(out).out_edges().reserve(nv + nv / 16);
   tv.resize(3 * nt);
   tw.resize(3 * nt);
   fl.resize(3 * nt, 0);
-  mk.resize(3 * nt, 0);
+  if (edge_markers) mk.resize(3 * nt, 0);
   std::vector<double> area_bounds(bounds ? nt : 0, -1.0);
   first_look.assign(looks ? nt : 0, 0);
   std::vector<std::vector<HalfEdgeId>> open(parts.size());
@@ -210,7 +216,7 @@ Mesh stitch(const Mesh& whole, std::vector<Part>& parts, unsigned threads, std::
     for (HalfEdgeId e = 0; e < 3 * slots && !(j == 0 && in_place); ++e) {
       tv[base + e] = id(m.origin(e));
       fl[base + e] = m.edge_flags(e);
-      mk[base + e] = m.edge_marker(e);
+      if (edge_markers) mk[base + e] = m.edge_marker(e);
       if (m.twin(e) == kNone) {
         tw[base + e] = kNone;
         open[j].push_back(static_cast<HalfEdgeId>(base + e));
@@ -242,7 +248,7 @@ Mesh stitch(const Mesh& whole, std::vector<Part>& parts, unsigned threads, std::
       fl[h] &= static_cast<std::uint8_t>(~kFrozenEdge);
       if (cuts.count(directed_key(a, b)) || cuts.count(directed_key(b, a))) {
         fl[h] &= static_cast<std::uint8_t>(~kConstrained);
-        mk[h] = 0;
+        if (edge_markers) mk[h] = 0;
         cut_edges.push_back(h);
       }
     }
@@ -354,7 +360,7 @@ std::optional<RefineStats> refine_in_parts(Mesh& mesh, const RefineOptions& opti
         MeshEditor(p.mesh).triangle_vertices().reserve(all);
         MeshEditor(p.mesh).twins().reserve(all);
         MeshEditor(p.mesh).edge_flags().reserve(all);
-        MeshEditor(p.mesh).edge_markers().reserve(all);
+        if (mesh.has_edge_markers()) MeshEditor(p.mesh).edge_markers().reserve(all);
       }
       p.stage.keep_final_bad = true;
       p.stats = refine_scanning(p.mesh, one, 1, &p.stage);
