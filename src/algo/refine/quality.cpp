@@ -60,7 +60,6 @@ Eval Refiner::eval(TriId t, const Point& a, const Point& b, const Point& c) cons
 // others as too large); a rewritten slot forgets why it was left alone.
 void Refiner::consider(TriId t) {
   if (t < why_.size()) why_[t] = Reason::None;
-  if (t < first_bad_.size()) first_bad_[t] = detail::kLookAgain;  // finish() evaluates it again
   const Eval ev = eval(t);
   if (!ev.skinny && !ev.large) return;
   const QueueEntry q{t, tv_[3 * t], tv_[3 * t + 1], tv_[3 * t + 2]};

@@ -148,10 +148,13 @@ class Refiner {
   }
   void consider(TriId t);
   // Per triangle slot, 1 when eval() finds it bad; empty on one scan thread.
-  // After the first look (first_bad_ kept by run()), slots that consider()
-  // has not seen since (it sees every rewritten slot and marks it
-  // kLookAgain) are not evaluated again.
+  // After the first look (first_bad_ kept by run()), slots that no fan has
+  // rewritten since (insert.cpp marks them kLookAgain) are not evaluated again.
   std::vector<std::uint8_t> bad_slots() const;
+  void look_again_at_fan(std::size_t n) {
+    for (std::size_t i = 0; i < n; ++i)
+      if (fan_[i] < first_bad_.size()) first_bad_[fan_[i]] = detail::kLookAgain;
+  }
   std::vector<std::uint8_t> first_look() const;  // from stage_
   std::vector<std::uint8_t> first_bad_;
   // Precision, measured where the edge is (not over the domain): an edge
@@ -225,6 +228,11 @@ class Refiner {
   bool left_alone(const TriView& tv, bool holding) const;
   bool refuse_split_near_apex(HalfEdgeId e, const Eval& ev, TriId t) const;
   void measure_apex_feature_sizes();
+  // A hub with shells: an input vertex with three or more segments and a
+  // small angle between two of them (few; inline, the scan asks every half-edge).
+  bool shelled_hub(VertexId v) const {
+    return v < n_input_ && apex_cos_[v] > shell_cos_ && adj_start_[v + 1] - adj_start_[v] >= 3;
+  }
   bool apex_distance(HalfEdgeId e, double& d2) const;
   void note_apex_distance(VertexId v, double d2) {
     if (apex_lfs2_[v] == 0 || d2 < apex_lfs2_[v]) apex_lfs2_[v] = d2;

@@ -106,7 +106,7 @@ void Refiner::apex_feature_sizes_in_parallel() {
   for_chunks(tv_.size(), scan_threads_, [&](std::size_t i, std::size_t lo, std::size_t hi) {
     double d2;
     for (std::size_t e = lo; e < hi; ++e)
-      if (apex_distance(static_cast<HalfEdgeId>(e), d2)) found[i].push_back({tv_[e], d2});
+      if (shelled_hub(tv_[e]) && apex_distance(static_cast<HalfEdgeId>(e), d2)) found[i].push_back({tv_[e], d2});
   });
   for (const auto& list : found)
     for (const auto& [v, d2] : list) note_apex_distance(v, d2);

@@ -81,7 +81,7 @@ void Refiner::measure_apex_feature_sizes() {
   if (scan_threads_ > 1) return apex_feature_sizes_in_parallel();  // setup_scan.cpp: the same, in the same order
   double d2;
   for (HalfEdgeId e = 0; e < tv_.size(); ++e)
-    if (apex_distance(e, d2)) note_apex_distance(tv_[e], d2);
+    if (shelled_hub(tv_[e]) && apex_distance(e, d2)) note_apex_distance(tv_[e], d2);
 }
 
 // The squared distance from hub tv_[e] to what triangle tri_of(e) shows of
@@ -89,7 +89,7 @@ void Refiner::measure_apex_feature_sizes() {
 // false when tv_[e] is no hub with shells, or for a ghost.
 bool Refiner::apex_distance(HalfEdgeId e, double& d2) const {
   const VertexId v = tv_[e];
-  if (v >= n_input_ || !(apex_cos_[v] > shell_cos_) || adj_start_[v + 1] - adj_start_[v] < 3) return false;
+  if (!shelled_hub(v)) return false;
   const VertexId w = tv_[next_edge(e)], x = tv_[prev_edge(e)];
   if (w >= pts_.size() || x >= pts_.size()) return false;  // a ghost
   const Point& V = pts_[v];
