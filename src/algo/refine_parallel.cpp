@@ -12,6 +12,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <new>
 #include <string>
 #include <unordered_map>
 #include <unordered_set>
@@ -26,6 +27,10 @@
 namespace deltamesh::detail {
 
 namespace {
+
+// The most triangles the first part's arrays are reserved for (2^27: 1.6 GB
+// of address space each for their vertices and twins).
+constexpr double kMaxStitchReserve = 134217728.0;
 
 std::uint64_t directed_key(VertexId a, VertexId b) { return (std::uint64_t{a} << 32) | b; }
 
@@ -356,11 +361,18 @@ std::optional<RefineStats> refine_in_parts(Mesh& mesh, const RefineOptions& opti
       // predicates' range, as the whole is), keeping its final verdicts.
       canonical_triangle_order(p.mesh);
       if (j == 0) {  // its arrays become the stitched mesh's: room for all (address space, not memory, until used)
-        const std::size_t all = 3 * (static_cast<std::size_t>(1.5 * expected) + mesh.num_triangle_slots() + 1024);
-        MeshEditor(p.mesh).triangle_vertices().reserve(all);
-        MeshEditor(p.mesh).twins().reserve(all);
-        MeshEditor(p.mesh).edge_flags().reserve(all);
-        if (mesh.has_edge_markers()) MeshEditor(p.mesh).edge_markers().reserve(all);
+        // At most kMaxStitchReserve triangles: beyond, the stitch grows the
+        // arrays (a copy, as before). Without the room (no address space)
+        // it does the same.
+        const double want = std::min(1.5 * expected, kMaxStitchReserve) + double(mesh.num_triangle_slots()) + 1024;
+        const auto all = 3 * static_cast<std::size_t>(want);
+        try {
+          MeshEditor(p.mesh).triangle_vertices().reserve(all);
+          MeshEditor(p.mesh).twins().reserve(all);
+          MeshEditor(p.mesh).edge_flags().reserve(all);
+          if (mesh.has_edge_markers()) MeshEditor(p.mesh).edge_markers().reserve(all);
+        } catch (const std::bad_alloc&) {  // (the part refines as it would have, without the room)
+        }
       }
       p.stage.keep_final_bad = true;
       p.stats = refine_scanning(p.mesh, one, 1, &p.stage);
