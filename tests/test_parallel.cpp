@@ -275,6 +275,54 @@ TEST(ParallelRefine, ScanThreadsChangeNothing) {
   }
 }
 
+// The last pass's statistics count the whole mesh, though its first look
+// takes the parts' final verdicts and its closing count evaluates only the
+// slots it rewrote: the triangles below the bound are those the geometry
+// shows (within rounding of the angle), all at the star's small input
+// angles; none too large. With and without segment markers (the parts carry
+// edge markers only when the input has them).
+TEST(ParallelRefine, StatisticsCountTheWholeMesh) {
+  for (const int marker : {0, 3}) {
+    SCOPED_TRACE(marker);
+    dm::Pslg g = dm::gen::star_polygon(300, 5);
+    for (dm::Segment& s : g.segments) s.marker = marker;
+    dm::Mesh m = carved(g);
+    dm::RefineOptions o;
+    o.min_angle_deg = 33;
+    o.max_area = 1e-4;
+    o.threads = 2;
+    const std::optional<dm::RefineStats> st = dm::detail::refine_in_parts(m, o, 2);
+    ASSERT_TRUE(st.has_value());
+    EXPECT_TRUE(st->complete) << st->summary();
+    std::size_t below_lo = 0, below_hi = 0, large = 0;
+    for (dm::TriId t = 0; t < m.num_triangle_slots(); ++t) {
+      if (!m.is_real(t)) continue;
+      const auto v = m.triangle(t);
+      double worst = 180;
+      for (int i = 0; i < 3; ++i) {
+        const dm::Point a = m.point(v[i]), b = m.point(v[(i + 1) % 3]), c = m.point(v[(i + 2) % 3]);
+        const double ux = b.x - a.x, uy = b.y - a.y, wx = c.x - a.x, wy = c.y - a.y;
+        worst = std::min(worst, std::atan2(std::abs(ux * wy - uy * wx), ux * wx + uy * wy) * 180 / 3.14159265358979323846);
+        if (i == 0 && 0.5 * std::abs(ux * wy - uy * wx) > o.max_area * (1 + 1e-12)) ++large;
+      }
+      below_lo += worst < o.min_angle_deg - 1e-9;
+      below_hi += worst < o.min_angle_deg + 1e-9;
+    }
+    ASSERT_GT(below_lo, 0u);
+    EXPECT_GE(st->below_bound, below_lo);
+    EXPECT_LE(st->below_bound, below_hi);
+    EXPECT_EQ(st->below_small_input_angle, st->below_bound);
+    EXPECT_EQ(st->too_large, 0u);
+    EXPECT_EQ(large, 0u);
+    dm::CheckOptions co;
+    co.convex_hull = false;
+    co.pslg = &g;
+    const dm::CheckReport r = dm::check(m, co);
+    EXPECT_TRUE(r.ok()) << r.summary();
+    EXPECT_EQ(m.has_edge_markers(), marker != 0);
+  }
+}
+
 // Issue 20 for the parallel path: scaling the input by 10^k (rounded, so
 // not quite the same input) gives nearly the same mesh, as on one thread
 // (tests/test_scale.cpp): the triangle count within 1% and the smallest

@@ -12,6 +12,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <new>
 #include <string>
 #include <unordered_map>
 #include <unordered_set>
@@ -26,6 +27,10 @@
 namespace deltamesh::detail {
 
 namespace {
+
+// The most triangles the first part's arrays are reserved for (2^27: 1.6 GB
+// of address space each for their vertices and twins).
+constexpr double kMaxStitchReserve = 134217728.0;
 
 std::uint64_t directed_key(VertexId a, VertexId b) { return (std::uint64_t{a} << 32) | b; }
 
@@ -46,6 +51,7 @@ struct Part {
   std::vector<VertexId> global;  // part vertex (those it started with) -> whole-mesh vertex
   std::vector<std::uint64_t> cuts;  // the temporary segments (whole-mesh ids, one direction each)
   RefineStats stats;
+  RefineStage stage;  // keeps the final verdict per slot: the last pass's first look
 };
 
 // The triangles of `whole` in slab `j` (slab[t] == j) as a mesh of their
@@ -87,7 +93,11 @@ void cut_part(const Mesh& whole, const std::vector<std::uint32_t>& slab, const s
   tv.resize(3 * nt);
   tw.resize(3 * nt);
   fl.assign(3 * nt, 0);
-  mk.assign(3 * nt, 0);
+  // Edge markers only when the whole has them: all-zero markers are the
+  // same to every reader, but cost 4 bytes per half-edge, their copies, and
+  // passes that skip meshes without them (finish_vertex_markers).
+  const bool edge_markers = whole.has_edge_markers();
+  if (edge_markers) mk.assign(3 * nt, 0);
   m.set_num_triangle_attributes(ta);
   m.triangle_attributes().resize(nt * ta);
   for (std::size_t i = 0; i < nt; ++i) {
@@ -96,7 +106,7 @@ void cut_part(const Mesh& whole, const std::vector<std::uint32_t>& slab, const s
       const HalfEdgeId e = 3 * t + c, f = static_cast<HalfEdgeId>(3 * i + c), o = whole.twin(e);
       tv[f] = local[whole.origin(e)];
       fl[f] = whole.edge_flags(e);
-      mk[f] = whole.edge_marker(e);
+      if (edge_markers) mk[f] = whole.edge_marker(e);
       if (o == kNone) {
         tw[f] = kNone;
       } else if (slab[tri_of(o)] == j) {
@@ -123,7 +133,8 @@ void cut_part(const Mesh& whole, const std::vector<std::uint32_t>& slab, const s
 // The parts back in one mesh: the whole mesh's vertices keep their ids, the
 // parts' new vertices follow part by part; boundary half-edges are paired by
 // their vertices, and the temporary segments become ordinary edges again.
-Mesh stitch(const Mesh& whole, std::vector<Part>& parts, unsigned threads, std::vector<HalfEdgeId>& cut_edges) {
+Mesh stitch(const Mesh& whole, std::vector<Part>& parts, unsigned threads, std::vector<HalfEdgeId>& cut_edges,
+           std::vector<std::uint8_t>& first_look) {
   const std::size_t n0 = whole.num_vertices(), na = whole.num_vertex_attributes(),
                     ta = whole.num_triangle_attributes();
   std::vector<std::size_t> vbase(parts.size() + 1, n0), tbase(parts.size() + 1, 0);
@@ -153,18 +164,38 @@ Mesh stitch(const Mesh& whole, std::vector<Part>& parts, unsigned threads, std::
   std::vector<HalfEdgeId>& tw = MeshEditor(out).twins();
   std::vector<std::uint8_t>& fl = MeshEditor(out).edge_flags();
   std::vector<int>& mk = MeshEditor(out).edge_markers();
+  const bool looks = std::all_of(parts.begin(), parts.end(), [](const Part& p) {
+    return p.stage.final_bad.size() == p.mesh.num_triangle_slots();
+  });
+  // The first part's triangle arrays become the result's (refine_in_parts
+  // reserved them for the whole mesh): its slots keep their place, only its
+  // vertex ids change, and the other parts are copied behind it. A copy of
+  // them cost a pass over half the mesh, and as much fresh memory.
+  Mesh& first = parts[0].mesh;
+  const std::size_t slots0 = tbase[1];
+  const bool edge_markers = whole.has_edge_markers();  // (the parts have them when the whole has)
+  const bool in_place = MeshEditor(first).edge_flags().size() == 3 * slots0 &&
+                        MeshEditor(first).edge_markers().size() == (edge_markers ? 3 * slots0 : 0);
+  if (in_place) {
+    tv.swap(MeshEditor(first).triangle_vertices());
+    tw.swap(MeshEditor(first).twins());
+    fl.swap(MeshEditor(first).edge_flags());
+    mk.swap(MeshEditor(first).edge_markers());
+  }
   // Room for the last refinement, which adds a few percent.
   const std::size_t room = 3 * (nt + nt / 16);
   tv.reserve(room);
   tw.reserve(room);
   fl.reserve(room);
-  mk.reserve(room);
+  if (edge_markers) mk.reserve(room);
   MeshEditor(out).points().reserve(nv + nv / 16);
+  MeshEditor(out).out_edges().reserve(nv + nv / 16);
   tv.resize(3 * nt);
   tw.resize(3 * nt);
-  fl.assign(3 * nt, 0);
-  mk.assign(3 * nt, 0);
+  fl.resize(3 * nt, 0);
+  if (edge_markers) mk.resize(3 * nt, 0);
   std::vector<double> area_bounds(bounds ? nt : 0, -1.0);
+  first_look.assign(looks ? nt : 0, 0);
   std::vector<std::vector<HalfEdgeId>> open(parts.size());
   run_tasks(parts.size(), threads, [&](std::size_t j) {
     const Mesh& m = parts[j].mesh;
@@ -180,11 +211,17 @@ Mesh stitch(const Mesh& whole, std::vector<Part>& parts, unsigned threads, std::
         for (std::size_t k = 0; k < na; ++k)
           out.vertex_attributes()[std::size_t{g} * na + k] = m.vertex_attributes()[std::size_t{v} * na + k];
     }
-    const std::size_t base = 3 * tbase[j];
-    for (HalfEdgeId e = 0; e < 3 * m.num_triangle_slots(); ++e) {
+    const std::size_t base = 3 * tbase[j], slots = tbase[j + 1] - tbase[j];
+    if (j == 0 && in_place) {
+      for (HalfEdgeId e = 0; e < 3 * slots; ++e) {
+        tv[e] = id(tv[e]);
+        if (tw[e] == kNone) open[0].push_back(e);
+      }
+    }
+    for (HalfEdgeId e = 0; e < 3 * slots && !(j == 0 && in_place); ++e) {
       tv[base + e] = id(m.origin(e));
       fl[base + e] = m.edge_flags(e);
-      mk[base + e] = m.edge_marker(e);
+      if (edge_markers) mk[base + e] = m.edge_marker(e);
       if (m.twin(e) == kNone) {
         tw[base + e] = kNone;
         open[j].push_back(static_cast<HalfEdgeId>(base + e));
@@ -192,10 +229,11 @@ Mesh stitch(const Mesh& whole, std::vector<Part>& parts, unsigned threads, std::
         tw[base + e] = static_cast<HalfEdgeId>(base + m.twin(e));
       }
     }
-    for (std::size_t k = 0; k < m.num_triangle_slots() * ta; ++k)
+    for (std::size_t k = 0; k < slots * ta; ++k)
       out.triangle_attributes()[tbase[j] * ta + k] = m.triangle_attributes()[k];
     if (bounds)
-      for (TriId t = 0; t < m.num_triangle_slots(); ++t) area_bounds[tbase[j] + t] = m.triangle_area_bound(t);
+      for (TriId t = 0; t < slots; ++t) area_bounds[tbase[j] + t] = m.triangle_area_bound(static_cast<TriId>(t));
+    if (looks) std::copy(parts[j].stage.final_bad.begin(), parts[j].stage.final_bad.end(), first_look.begin() + tbase[j]);
   });
   std::unordered_set<std::uint64_t> cuts;
   std::unordered_map<std::uint64_t, HalfEdgeId> by_vertices;
@@ -215,7 +253,7 @@ Mesh stitch(const Mesh& whole, std::vector<Part>& parts, unsigned threads, std::
       fl[h] &= static_cast<std::uint8_t>(~kFrozenEdge);
       if (cuts.count(directed_key(a, b)) || cuts.count(directed_key(b, a))) {
         fl[h] &= static_cast<std::uint8_t>(~kConstrained);
-        mk[h] = 0;
+        if (edge_markers) mk[h] = 0;
         cut_edges.push_back(h);
       }
     }
@@ -230,6 +268,20 @@ Mesh stitch(const Mesh& whole, std::vector<Part>& parts, unsigned threads, std::
   MeshEditor(out).set_compacted();
   return out;
 }
+
+// The mesh's own flips, noting the slots they rewrite: the parts' verdicts
+// on those no longer hold.
+class NotingTopology : public MeshTopology {
+ public:
+  NotingTopology(Mesh& m, std::vector<std::uint8_t>& look) : MeshTopology(m), look_(look) {}
+  void flip(const FlipQuad& q, TraceReason why) {
+    MeshTopology::flip(q, why);
+    if (!look_.empty()) look_[tri_of(q.e)] = look_[tri_of(q.f)] = kLookAgain;
+  }
+
+ private:
+  std::vector<std::uint8_t>& look_;
+};
 
 void add_counts(RefineStats& to, const RefineStats& from) {
   to.segment_splits += from.segment_splits;
@@ -275,6 +327,7 @@ std::optional<RefineStats> refine_in_parts(Mesh& mesh, const RefineOptions& opti
   coarse.min_angle_deg = 0;
   RefineStats total = refine_scanning(mesh, coarse, threads);
   const bool cut = total.complete;  // else the coarse stage met a limit: finish sequentially
+  RefineStage last_stage;
 
   if (cut) {
     // Slabs by centroid x, at quantiles of the triangles' centroids.
@@ -302,19 +355,40 @@ std::optional<RefineStats> refine_in_parts(Mesh& mesh, const RefineOptions& opti
     std::vector<Part> pieces(parts);
     run_tasks(parts, threads, [&](std::size_t j) {
       cut_part(mesh, slab, index, static_cast<std::uint32_t>(j), pieces[j]);
-      if (pieces[j].mesh.num_triangles() > 0) pieces[j].stats = refine(pieces[j].mesh, one);
+      Part& p = pieces[j];
+      if (p.mesh.num_triangles() == 0) return;
+      // refine() on one thread (the part is compact and within the
+      // predicates' range, as the whole is), keeping its final verdicts.
+      canonical_triangle_order(p.mesh);
+      if (j == 0) {  // its arrays become the stitched mesh's: room for all (address space, not memory, until used)
+        // At most kMaxStitchReserve triangles: beyond, the stitch grows the
+        // arrays (a copy, as before). Without the room (no address space)
+        // it does the same.
+        const double want = std::min(1.5 * expected, kMaxStitchReserve) + double(mesh.num_triangle_slots()) + 1024;
+        const auto all = 3 * static_cast<std::size_t>(want);
+        try {
+          MeshEditor(p.mesh).triangle_vertices().reserve(all);
+          MeshEditor(p.mesh).twins().reserve(all);
+          MeshEditor(p.mesh).edge_flags().reserve(all);
+          if (mesh.has_edge_markers()) MeshEditor(p.mesh).edge_markers().reserve(all);
+        } catch (const std::bad_alloc&) {  // (the part refines as it would have, without the room)
+        }
+      }
+      p.stage.keep_final_bad = true;
+      p.stats = refine_scanning(p.mesh, one, 1, &p.stage);
     });
     for (const Part& p : pieces) add_counts(total, p.stats);
     std::vector<HalfEdgeId> cut_edges;
-    mesh = stitch(mesh, pieces, threads, cut_edges);
+    mesh = stitch(mesh, pieces, threads, cut_edges, last_stage.first_look);
     // Each part is a constrained Delaunay triangulation: only edges whose
     // triangles come from different parts (the cuts) can fail the
     // empty-circle test, and then the edges their flips make.
-    MeshTopology topo(mesh);
+    NotingTopology topo(mesh, last_stage.first_look);
     constrained_lawson(topo, cut_edges);
+    last_stage.reserve = false;  // the stitch has
   }
   one.progress = options.progress;
-  RefineStats last = refine_scanning(mesh, one, threads);
+  RefineStats last = refine_scanning(mesh, one, threads, &last_stage);
   add_counts(last, total);
   last.input_vertices = input_vertices;
   last.steiner_points = mesh.num_vertices() - input_vertices;

@@ -4,6 +4,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <optional>
+#include <vector>
 
 #include "deltamesh/mesh.hpp"
 #include "deltamesh/refine.hpp"
@@ -40,7 +41,26 @@ inline constexpr std::uint8_t kFrozenEdge = 2;
 // `scan_threads` for the passes over every triangle (Refiner::
 // set_scan_threads): refine()'s sequential path (1, after putting the slots
 // in canonical order) and the stages of refine_in_parts (all threads).
-RefineStats refine_scanning(Mesh& mesh, const RefineOptions& options, unsigned scan_threads);
+// `stage`, when given, says how a stage of refine_in_parts differs from a
+// whole refinement (nullptr: refine()'s).
+struct RefineStage {
+  // In: the first look's verdict per triangle slot, as the parts' last
+  // statistics found it: 0 good, 1 bad, kLookAgain rewritten since (the
+  // stitch's flips); empty: every slot is evaluated.
+  std::vector<std::uint8_t> first_look;
+  // Out, when keep_final_bad: per slot, 1 when the triangle is bad at the
+  // end (finish()'s statistics evaluate every slot anyway).
+  std::vector<std::uint8_t> final_bad;
+  bool keep_final_bad = false;
+  // Reserve the arrays for the area bound's estimate of the final size
+  // (false: the caller has; the last pass adds a few percent to a mesh
+  // already at size, and the estimate counts every triangle again).
+  bool reserve = true;
+};
+inline constexpr std::uint8_t kLookAgain = 2;
+
+RefineStats refine_scanning(Mesh& mesh, const RefineOptions& options, unsigned scan_threads,
+                            RefineStage* stage = nullptr);
 
 std::optional<RefineStats> refine_in_parts(Mesh& mesh, const RefineOptions& options, unsigned parts = 0);
 

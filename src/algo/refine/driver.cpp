@@ -44,13 +44,11 @@ void Refiner::run() {
   setup();
   queue_encroached();
   const std::size_t nt = tv_.size() / 3;
-  std::vector<std::uint8_t> bad = bad_slots();  // consider() queues only bad ones
+  std::vector<std::uint8_t> bad =
+      stage_ && stage_->first_look.size() == nt ? first_look() : bad_slots();  // consider() queues only bad ones
   for (TriId t = 0; t < nt; ++t)
     if (bad.empty() || bad[t]) consider(t);
-  if (!bad.empty() && !has_area_bounds_) {  // finish() re-evaluates only the slots refinement rewrites
-    first_bad_ = std::move(bad);
-    first_tv_ = tv_;
-  }
+  if (!bad.empty() && !has_area_bounds_) first_bad_ = std::move(bad);  // finish() re-evaluates only rewritten slots
   ProgressReporter progress(opt_.progress, "refine", "Steiner points");
   refine_loop(progress);
   if (beyond_ && !stopped_) go_beyond(progress);  // beyond.cpp
@@ -170,6 +168,9 @@ double Refiner::area_ratio(TriId t, bool global) const {
 void Refiner::reserve_for_area_bounds() {
   const bool global = opt_.max_area > 0;
   if (!global && !has_area_bounds_) return;
+  // refine_in_parts' last pass: the stitch reserved room, and the estimate
+  // (a pass over every triangle) would only raise a budget of 50 per vertex.
+  if (stage_ && !stage_->reserve) return;
   double estimate = 0;
   const std::size_t nt = tv_.size() / 3;
   if (scan_threads_ > 1) estimate = area_estimate_in_parallel(global);  // setup_scan.cpp
@@ -438,7 +439,7 @@ using refinement::Refiner;
 
 namespace detail {
 
-RefineStats refine_scanning(Mesh& mesh, const RefineOptions& options, unsigned scan_threads) {
+RefineStats refine_scanning(Mesh& mesh, const RefineOptions& options, unsigned scan_threads, RefineStage* stage) {
   RefineStats stats;
   if (!mesh.compacted()) mesh.compact();
   stats.input_vertices = mesh.num_vertices();
@@ -446,10 +447,14 @@ RefineStats refine_scanning(Mesh& mesh, const RefineOptions& options, unsigned s
   if (mesh.num_triangles() == 0) return stats;
   Refiner r(mesh, options, stats);
   r.set_scan_threads(scan_threads);
+  r.set_stage(stage);
   r.run();
   // Mesh::add_triangle (used when triangles carry bounds or attributes)
   // clears the compacted flag; the mesh has no dead or ghost slots.
-  if (!mesh.compacted()) mesh.compact();
+  if (!mesh.compacted()) {
+    mesh.compact();
+    if (stage) stage->final_bad.clear();  // (in case it moved a slot)
+  }
   return stats;
 }
 

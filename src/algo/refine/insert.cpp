@@ -112,6 +112,7 @@ void Refiner::insert_interior(const Point& c, TriId seed) {
   ve_[v] = 3 * fan_[0];
   carry_attributes();
   if (trace_) [[unlikely]] trace_fan(TraceKind::SplitTriangle, v, kNone, kNone);
+  if (!first_bad_.empty()) [[unlikely]] look_again_at_fan(n);
   for (std::size_t i = 0; i < n; ++i) {
     consider(fan_[i]);
     if (bnd_[i].flags & kConstrained) push_if_encroached(3 * fan_[i] + 1, v);
@@ -190,6 +191,7 @@ bool Refiner::split_segment(HalfEdgeId e, const Point* at, int depth) {
   ve_[v] = mb1;
   carry_attributes();
   if (trace_) [[unlikely]] trace_fan(TraceKind::SplitSegment, v, a, b);
+  if (!first_bad_.empty()) [[unlikely]] look_again_at_fan(n);
   for (std::size_t i = 0; i < n; ++i) {
     consider(fan_[i]);
     if (bnd_[i].flags & kConstrained) push_if_encroached(3 * fan_[i] + 1, v);

@@ -73,13 +73,12 @@ std::vector<std::uint8_t> Refiner::bad_slots() const {
   std::vector<std::uint8_t> bad;
   if (scan_threads_ < 2 || opt_.max_area_at || opt_.max_edge_at) return bad;
   const std::size_t nt = tv_.size() / 3, chunks = 4 * std::size_t{scan_threads_};
-  const std::size_t before = first_tv_.size() / 3;  // slots as the first look saw them (run())
+  const std::size_t before = first_bad_.size();  // slots as the first look saw them (run())
   bad.resize(nt);
   detail::run_tasks(chunks, scan_threads_, [&](std::size_t i) {
     for (std::size_t t = nt * i / chunks; t < nt * (i + 1) / chunks; ++t) {
       if (tv_[3 * t] >= pts_.size()) continue;  // a dead or ghost slot: never bad
-      if (t < before && tv_[3 * t] == first_tv_[3 * t] && tv_[3 * t + 1] == first_tv_[3 * t + 1] &&
-          tv_[3 * t + 2] == first_tv_[3 * t + 2]) {  // the same triangle (no size callbacks or per-triangle bounds)
+      if (t < before && first_bad_[t] != detail::kLookAgain) {  // the same triangle (no size callbacks or per-triangle bounds)
         bad[t] = first_bad_[t];
         continue;
       }
@@ -87,6 +86,19 @@ std::vector<std::uint8_t> Refiner::bad_slots() const {
       bad[t] = ev.skinny || ev.large;
     }
   });
+  return bad;
+}
+
+// The first look of refine_in_parts' last pass: the parts' final verdicts
+// (the same triangles, evaluated the same way), and eval() for the slots the
+// stitch's flips rewrote.
+std::vector<std::uint8_t> Refiner::first_look() const {
+  std::vector<std::uint8_t> bad = std::move(stage_->first_look);
+  for (std::size_t t = 0; t < bad.size(); ++t)
+    if (bad[t] == detail::kLookAgain) {
+      const Eval ev = eval(static_cast<TriId>(t));
+      bad[t] = ev.skinny || ev.large;
+    }
   return bad;
 }
 

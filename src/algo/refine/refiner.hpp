@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "algo/refine/queue.hpp"
+#include "algo/refine_parallel.hpp"
 #include "deltamesh/mesh.hpp"
 #include "deltamesh/predicates.hpp"
 #include "deltamesh/progress.hpp"
@@ -94,6 +95,9 @@ class Refiner {
   // the statistics); the result is the same for any count. Only without
   // callbacks, which would be called concurrently (refine_in_parts' last pass).
   void set_scan_threads(unsigned threads) { scan_threads_ = threads; }
+  // A stage of refine_in_parts (refine_parallel.hpp): a first look given,
+  // the final verdicts kept, no reserve.
+  void set_stage(detail::RefineStage* stage) { stage_ = stage; }
 
  private:
   // ---- driver.cpp: setup, the R1/R2 loop, decisions ----------------------
@@ -144,16 +148,21 @@ class Refiner {
   }
   void consider(TriId t);
   // Per triangle slot, 1 when eval() finds it bad; empty on one scan thread.
-  // After the first look (first_bad_, first_tv_ kept by run()), slots that
-  // still hold the same triangle are not evaluated again.
+  // After the first look (first_bad_ kept by run()), slots that no fan has
+  // rewritten since (insert.cpp marks them kLookAgain) are not evaluated again.
   std::vector<std::uint8_t> bad_slots() const;
+  void look_again_at_fan(std::size_t n) {
+    for (std::size_t i = 0; i < n; ++i)
+      if (fan_[i] < first_bad_.size()) first_bad_[fan_[i]] = detail::kLookAgain;
+  }
+  std::vector<std::uint8_t> first_look() const;  // from stage_
   std::vector<std::uint8_t> first_bad_;
-  std::vector<VertexId> first_tv_;
   // Why subsegment e may not be split: Reason::None when it may.
   Reason split_refusal(HalfEdgeId e) const;
   bool splittable(HalfEdgeId e) const { return split_refusal(e) == Reason::None; }
   // A new coordinate below the exact predicates' smallest magnitude
-  // (kMinCoordinate) is rounded to 0: a move far below the floor above.
+  // (kMinCoordinate) is rounded to 0 (a move far below any ulp of the
+  // triangle's own coordinates).
   static Point within_predicate_range(Point p) {
     if (std::fabs(p.x) < kMinCoordinate) p.x = std::copysign(0.0, p.x);  // -0 stays -0
     if (std::fabs(p.y) < kMinCoordinate) p.y = std::copysign(0.0, p.y);
@@ -213,6 +222,16 @@ class Refiner {
   bool left_alone(const TriView& tv, bool holding) const;
   bool refuse_split_near_apex(HalfEdgeId e, const Eval& ev, TriId t) const;
   void measure_apex_feature_sizes();
+  // A hub with shells: an input vertex with three or more segments and a
+  // small angle between two of them (few; inline, the scan asks every half-edge).
+  bool shelled_hub(VertexId v) const {
+    return v < n_input_ && apex_cos_[v] > shell_cos_ && adj_start_[v + 1] - adj_start_[v] >= 3;
+  }
+  bool apex_distance(HalfEdgeId e, double& d2) const;
+  void note_apex_distance(VertexId v, double d2) {
+    if (apex_lfs2_[v] == 0 || d2 < apex_lfs2_[v]) apex_lfs2_[v] = d2;
+  }
+  void apex_feature_sizes_in_parallel();  // setup_scan.cpp
   bool in_small_sector(VertexId apex, const Point& g) const;
   bool exempt_from_r1(HalfEdgeId e) const;
   void mirror_split(std::uint32_t seg, VertexId apex, double radius, int depth);
@@ -312,6 +331,7 @@ class Refiner {
   std::size_t budget_ = kUnlimited;
   std::size_t n_input_ = 0;
   unsigned scan_threads_ = 1;
+  detail::RefineStage* stage_ = nullptr;
 
   // Input segments (the constrained edges when refinement starts).
   std::vector<std::array<VertexId, 2>> segs_;

@@ -52,19 +52,22 @@ void Refiner::scan_edges_in_parallel() {
       ++adj_start_[s[1] + 1];
     }
   // Out-edges: a boundary vertex's last boundary out-edge, else a vertex's
-  // first out-edge, as the sequential loop leaves them (min, then max by
-  // compare-and-swap: the same result in any interleaving).
+  // first out-edge, as the sequential loop leaves them. One pass of
+  // compare-and-swap to the largest by that order (boundary ones above the
+  // others, the larger of two boundary ones, the smaller of two others):
+  // the same result in any interleaving.
   std::fill(ve_.begin(), ve_.end(), kNone);
   for_chunks(ne, scan_threads_, [&](std::size_t, std::size_t lo, std::size_t hi) {
     for (std::size_t e = lo; e < hi; ++e) {
-      detail::atomic_replace_while(ve_[tv_[e]], static_cast<HalfEdgeId>(e), [e](HalfEdgeId cur) { return cur > e; });
-    }
-  });
-  for_chunks(ne, scan_threads_, [&](std::size_t, std::size_t lo, std::size_t hi) {
-    for (std::size_t e = lo; e < hi; ++e) {
-      if (tw_[e] != kNone) continue;
-      detail::atomic_replace_while(ve_[tv_[e]], static_cast<HalfEdgeId>(e),
-                                   [&, e](HalfEdgeId cur) { return tw_[cur] != kNone || cur < e; });
+      if (tw_[e] == kNone) {
+        detail::atomic_replace_while(ve_[tv_[e]], static_cast<HalfEdgeId>(e), [&, e](HalfEdgeId cur) {
+          return cur == kNone || tw_[cur] != kNone || cur < e;
+        });
+      } else {
+        detail::atomic_replace_while(ve_[tv_[e]], static_cast<HalfEdgeId>(e), [&, e](HalfEdgeId cur) {
+          return cur == kNone || (cur > e && tw_[cur] != kNone);
+        });
+      }
     }
   });
 }
@@ -96,6 +99,20 @@ void Refiner::queue_encroached_in_parallel() {
     }
   });
   for (const auto& list : found) encroached_.insert(encroached_.end(), list.begin(), list.end());
+}
+
+// measure_apex_feature_sizes()' distances, found concurrently, noted in
+// half-edge order.
+void Refiner::apex_feature_sizes_in_parallel() {
+  const std::size_t chunks = chunk_count(scan_threads_);
+  std::vector<std::vector<std::pair<VertexId, double>>> found(chunks);
+  for_chunks(tv_.size(), scan_threads_, [&](std::size_t i, std::size_t lo, std::size_t hi) {
+    double d2;
+    for (std::size_t e = lo; e < hi; ++e)
+      if (shelled_hub(tv_[e]) && apex_distance(static_cast<HalfEdgeId>(e), d2)) found[i].push_back({tv_[e], d2});
+  });
+  for (const auto& list : found)
+    for (const auto& [v, d2] : list) note_apex_distance(v, d2);
 }
 
 // reserve_for_area_bounds()'s estimate, summed by chunks.

@@ -78,22 +78,30 @@ void Refiner::find_small_angles() {
 // triangle of the vertex's fan.
 void Refiner::measure_apex_feature_sizes() {
   apex_lfs2_.assign(n_input_, 0.0);
-  for (HalfEdgeId e = 0; e < tv_.size(); ++e) {
-    const VertexId v = tv_[e];
-    if (v >= n_input_ || !(apex_cos_[v] > shell_cos_) || adj_start_[v + 1] - adj_start_[v] < 3) continue;
-    const VertexId w = tv_[next_edge(e)], x = tv_[prev_edge(e)];
-    if (w >= pts_.size() || x >= pts_.size()) continue;  // a ghost
-    const Point& V = pts_[v];
-    double d2 = dist2(V, pts_[w]);
-    if (fl_[next_edge(e)] & kConstrained) {  // the opposite edge w -> x
-      const Point& W = pts_[w];
-      const Point& X = pts_[x];
-      const double ux = X.x - W.x, uy = X.y - W.y, l2 = ux * ux + uy * uy;
-      const double f = l2 > 0 ? std::clamp(((V.x - W.x) * ux + (V.y - W.y) * uy) / l2, 0.0, 1.0) : 0.0;
-      d2 = std::min(d2, dist2(V, {W.x + f * ux, W.y + f * uy}));
-    }
-    if (apex_lfs2_[v] == 0 || d2 < apex_lfs2_[v]) apex_lfs2_[v] = d2;
+  if (scan_threads_ > 1) return apex_feature_sizes_in_parallel();  // setup_scan.cpp: the same, in the same order
+  double d2;
+  for (HalfEdgeId e = 0; e < tv_.size(); ++e)
+    if (shelled_hub(tv_[e]) && apex_distance(e, d2)) note_apex_distance(tv_[e], d2);
+}
+
+// The squared distance from hub tv_[e] to what triangle tri_of(e) shows of
+// the input (its neighbour, and the opposite edge when it is a segment);
+// false when tv_[e] is no hub with shells, or for a ghost.
+bool Refiner::apex_distance(HalfEdgeId e, double& d2) const {
+  const VertexId v = tv_[e];
+  if (!shelled_hub(v)) return false;
+  const VertexId w = tv_[next_edge(e)], x = tv_[prev_edge(e)];
+  if (w >= pts_.size() || x >= pts_.size()) return false;  // a ghost
+  const Point& V = pts_[v];
+  d2 = dist2(V, pts_[w]);
+  if (fl_[next_edge(e)] & kConstrained) {  // the opposite edge w -> x
+    const Point& W = pts_[w];
+    const Point& X = pts_[x];
+    const double ux = X.x - W.x, uy = X.y - W.y, l2 = ux * ux + uy * uy;
+    const double f = l2 > 0 ? std::clamp(((V.x - W.x) * ux + (V.y - W.y) * uy) / l2, 0.0, 1.0) : 0.0;
+    d2 = std::min(d2, dist2(V, {W.x + f * ux, W.y + f * uy}));
   }
+  return true;
 }
 
 // The sector from constrained out-edge s.e0 of an input vertex: its angle

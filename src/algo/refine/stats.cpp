@@ -29,10 +29,13 @@ void Refiner::finish() {
   double low_outside = 2.0;
   double precision_sin2 = 2.0;
   const std::vector<std::uint8_t> bad = bad_slots();
+  const bool keep = stage_ && stage_->keep_final_bad;
+  if (keep) stage_->final_bad.assign(nt, 0);
   for (TriId t = 0; t < nt; ++t) {
     if (!bad.empty() && !bad[t]) continue;
     const Eval ev = eval(t);
     if (!ev.skinny && !ev.large) continue;
+    if (keep) stage_->final_bad[t] = 1;
     Reason why = t < why_.size() ? why_[t] : Reason::None;
     if (why == Reason::None) why = stalled_ ? Reason::OutOfReach : (stopped ? Reason::Budget : Reason::Precision);
     if (why == Reason::Precision && (st_.precision_edge == 0.0 || (ev.skinny && ev.sin2 < precision_sin2))) {
