@@ -3,10 +3,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <limits>
 #include <string>
 
+#include "core/parallel.hpp"
 #include "deltamesh/errors.hpp"
 #include "deltamesh/predicates.hpp"
 #include "mesh/editor.hpp"
@@ -55,7 +57,19 @@ std::function<double(double, double)> Frame::length_field_to(std::function<doubl
 
 Frame frame_for(std::span<const Point> points) {
   double m = 0, lo = INFINITY;  // largest, and smallest nonzero, magnitude
-  for (std::size_t i = 0; i < points.size(); ++i) {
+  // One branch-free pass (the whole input, on the serial path); a NaN or an
+  // infinity only sets the flag, and the loop below then names the first.
+  bool bad = false;
+  for (const Point& p : points) {
+    const double ax = std::fabs(p.x), ay = std::fabs(p.y);
+    bad |= !(ax <= std::numeric_limits<double>::max()) | !(ay <= std::numeric_limits<double>::max());
+    const double big = ax < ay ? ay : ax;
+    m = m < big ? big : m;
+    const double sx = ax > 0 ? ax : INFINITY, sy = ay > 0 ? ay : INFINITY;
+    const double small = sx < sy ? sx : sy;
+    lo = small < lo ? small : lo;
+  }
+  for (std::size_t i = 0; bad && i < points.size(); ++i) {
     const Point& p = points[i];
     if (!std::isfinite(p.x) || !std::isfinite(p.y)) {
       const bool bad_x = !std::isfinite(p.x);
@@ -63,10 +77,6 @@ Frame frame_for(std::span<const Point> points) {
       throw InputError(std::string("coordinate ") + (bad_x ? "x" : "y") + " of point " + std::to_string(i) + " is " +
                            (std::isnan(v) ? "NaN" : "infinite"),
                        i);
-    }
-    for (const double v : {std::fabs(p.x), std::fabs(p.y)}) {
-      m = std::max(m, v);
-      if (v > 0) lo = std::min(lo, v);
     }
   }
   Frame f;
@@ -95,8 +105,23 @@ double power_of_two(int k) { return k >= -1022 && k <= 1023 ? std::ldexp(1.0, k)
 }  // namespace
 
 void scale_vertices(const Frame& f, std::vector<Point>& points) {
-  const double big = largest(points);  // before the loop scales points in place
   const double pk = power_of_two(f.k);
+  if (pk > 0) {
+    // Branch-free passes over the whole input (the serial path): is any
+    // nonzero coordinate too small once scaled? If not, scale (nothing to do
+    // in the identity frame). Else the loop below names the first.
+    bool tiny = false;
+    for (const Point& p : points) {
+      const double sx = std::fabs(p.x * pk), sy = std::fabs(p.y * pk);
+      tiny |= ((sx < kMinCoordinate) & (p.x != 0)) | ((sy < kMinCoordinate) & (p.y != 0));
+    }
+    if (!tiny) {
+      if (!f.identity())
+        for (Point& p : points) p = {p.x * pk, p.y * pk};
+      return;
+    }
+  }
+  const double big = largest(points);  // before the loop scales points in place
   for (std::size_t i = 0; i < points.size(); ++i) {
     Point& p = points[i];
     const Point q{times_power_of_two(p.x, f.k, pk), times_power_of_two(p.y, f.k, pk)};
@@ -143,6 +168,26 @@ bool needs_frame(std::span<const Point> points) {
   return false;
 }
 
+bool in_predicate_range(std::span<const Point> points, unsigned threads) {
+  const double hi = kMaxCoordinate, lo = kMinCoordinate;
+  const auto scan = [hi, lo](std::span<const Point> part) {
+    bool out = false;  // NaN fails every comparison
+    for (const Point& p : part) {
+      const double ax = std::fabs(p.x), ay = std::fabs(p.y);
+      out |= !(ax <= hi) | !(ay <= hi) | ((ax < lo) & (ax != 0)) | ((ay < lo) & (ay != 0));
+    }
+    return !out;
+  };
+  constexpr std::size_t kMinChunk = std::size_t{1} << 17;
+  const std::size_t chunks = std::max<std::size_t>(1, std::min<std::size_t>(threads, points.size() / kMinChunk));
+  if (chunks == 1) return scan(points);
+  std::vector<std::uint8_t> ok(chunks, 0);
+  run_tasks(chunks, threads, [&](std::size_t j) {
+    ok[j] = scan(points.subspan(points.size() * j / chunks, points.size() * (j + 1) / chunks - points.size() * j / chunks));
+  });
+  return std::all_of(ok.begin(), ok.end(), [](std::uint8_t b) { return b != 0; });
+}
+
 Pslg scaled_pslg(const Frame& f, Pslg pslg) {
   scale_vertices(f, pslg.points);
   scale_seeds(f, pslg.holes);
@@ -175,6 +220,7 @@ void scale_mesh(const Frame& f, Mesh& mesh) {
 }
 
 void restore(const Frame& f, Mesh& mesh) {
+  if (f.identity()) return;  // every vertex and bound as it is
   const double pk = power_of_two(-f.k);
   for (Point& p : detail::MeshEditor(mesh).points())
     p = {times_power_of_two(p.x, -f.k, pk), times_power_of_two(p.y, -f.k, pk)};

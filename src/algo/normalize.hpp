@@ -55,6 +55,10 @@ void scale_seeds(const Frame& f, std::vector<Point>& points);
 // them). The library's lower-level entry points (delaunay(), triangulate(),
 // refine()) mesh in a frame only then, so in-range calls are unchanged.
 bool needs_frame(std::span<const Point> points);
+// Whether every coordinate is finite and in the predicates' range (what
+// check_coordinates() accepts), in one branch-free scan on up to `threads`
+// threads; check_coordinates() names the culprit when it is not.
+bool in_predicate_range(std::span<const Point> points, unsigned threads);
 // A PSLG (points, holes, region seeds and their area bounds) scaled into f.
 Pslg scaled_pslg(const Frame& f, Pslg pslg);
 // Refinement's area and length bounds (global, callbacks) scaled into f.

@@ -7,12 +7,15 @@
 #include <cmath>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "deltamesh/errors.hpp"
 #include "deltamesh/predicates.hpp"
 #include "algo/normalize.hpp"
 #include "algo/validate_overlap.hpp"
 #include "algo/vertex_data.hpp"
+#include "core/parallel.hpp"
+#include "mesh/editor.hpp"
 #include "mesh/edge_rules.hpp"
 #include "mesh/trace_hooks.hpp"
 
@@ -135,7 +138,9 @@ std::size_t count_constrained_edges(const Mesh& mesh) {
 
 void detail::interpolate_vertex_attributes(Mesh& mesh, VertexId v, std::size_t n) { interpolate_attributes(mesh, v, n); }
 
-void finish_vertex_markers(Mesh& mesh) {
+void finish_vertex_markers(Mesh& mesh) { detail::finish_vertex_markers(mesh, 1); }
+
+void detail::finish_vertex_markers(Mesh& mesh, unsigned threads) {
   std::vector<int>& markers = mesh.vertex_markers();
   markers.resize(mesh.num_vertices(), 0);
   const std::size_t na = mesh.num_vertex_attributes();
@@ -155,14 +160,26 @@ void finish_vertex_markers(Mesh& mesh) {
   // ... and a vertex still at 0 on the boundary gets 1. A compacted mesh
   // has only real triangles: its boundary is where twins are kNone (one
   // pass over the twins, a few instructions per half-edge).
+  // The scan runs in chunks of half-edges (each lists its boundary ones);
+  // the markers are then set in half-edge order, as one pass would.
   if (mesh.compacted()) {
     const std::span<const VertexId> tv = mesh.triangle_vertices();
+    const std::span<const HalfEdgeId> tw = detail::MeshEditor(mesh).twins();
     const std::size_t n = mesh.num_vertices();
-    for (HalfEdgeId e = 0; e < tv.size(); ++e) {
-      if (mesh.twin(e) != kNone || tv[e] >= n || tv[next_edge(e)] >= n) continue;  // (a removed slot)
-      if (markers[tv[e]] == 0) markers[tv[e]] = 1;
-      if (markers[tv[next_edge(e)]] == 0) markers[tv[next_edge(e)]] = 1;
-    }
+    constexpr std::size_t kMinChunk = std::size_t{1} << 18;
+    const std::size_t chunks = std::max<std::size_t>(1, std::min<std::size_t>(threads, tv.size() / kMinChunk));
+    std::vector<std::vector<HalfEdgeId>> boundary(chunks);
+    detail::run_tasks(chunks, threads, [&](std::size_t j) {
+      const std::size_t end = tv.size() * (j + 1) / chunks;
+      for (std::size_t e = tv.size() * j / chunks; e < end; ++e)
+        if (tw[e] == kNone) boundary[j].push_back(static_cast<HalfEdgeId>(e));
+    });
+    for (const std::vector<HalfEdgeId>& list : boundary)
+      for (const HalfEdgeId e : list) {
+        if (tv[e] >= n || tv[next_edge(e)] >= n) continue;  // (a removed slot)
+        if (markers[tv[e]] == 0) markers[tv[e]] = 1;
+        if (markers[tv[next_edge(e)]] == 0) markers[tv[next_edge(e)]] = 1;
+      }
     return;
   }
   for (TriId t : mesh.triangles()) {
@@ -267,7 +284,7 @@ Mesh triangulate_in_range(const Pslg& pslg, const TriangulateOptions& options, T
 
   t = Clock::now();
   if (!mesh.compacted()) mesh.compact();
-  finish_vertex_markers(mesh);
+  detail::finish_vertex_markers(mesh, detail::resolve_threads(options.threads));
   st.finish_seconds = seconds_since(t);
   st.vertices = mesh.num_vertices();
   st.triangles = mesh.num_triangles();
