@@ -6,7 +6,9 @@
 #include <cstdint>
 #include <cstdio>
 #include <limits>
+#include <span>
 #include <string>
+#include <vector>
 
 #include "core/parallel.hpp"
 #include "deltamesh/errors.hpp"
@@ -27,6 +29,17 @@ double largest(std::span<const Point> points) {
   double m = 0;
   for (const Point& p : points) m = std::max({m, std::fabs(p.x), std::fabs(p.y)});
   return m;
+}
+
+// Parts of [0, n) for up to `threads` threads (0 = every hardware one):
+// one part below kMinChunk elements per part.
+constexpr std::size_t kMinChunk = std::size_t{1} << 17;
+std::size_t chunks_for(std::size_t n, unsigned threads) {
+  return std::max<std::size_t>(1, std::min<std::size_t>(resolve_threads(threads), n / kMinChunk));
+}
+std::span<const Point> chunk(std::span<const Point> points, std::size_t j, std::size_t chunks) {
+  const std::size_t b = points.size() * j / chunks, e = points.size() * (j + 1) / chunks;
+  return points.subspan(b, e - b);
 }
 
 std::string show(double v) {
@@ -55,19 +68,38 @@ std::function<double(double, double)> Frame::length_field_to(std::function<doubl
   };
 }
 
-Frame frame_for(std::span<const Point> points) {
-  double m = 0, lo = INFINITY;  // largest, and smallest nonzero, magnitude
-  // One branch-free pass (the whole input, on the serial path); a NaN or an
-  // infinity only sets the flag, and the loop below then names the first.
+Frame frame_for(std::span<const Point> points, unsigned threads) {
+  // One pass in parts (the whole input, on the serial path). A NaN or an
+  // infinity only sets a flag; the loop below then names the first.
+  struct Extent {
+    double m = 0, lo = INFINITY;  // largest, and smallest nonzero, magnitude
+    bool bad = false;
+  };
+  const auto extent = [](std::span<const Point> part) {
+    Extent x;
+    for (const Point& p : part) {
+      const double ax = std::fabs(p.x), ay = std::fabs(p.y);
+      x.bad |= !(ax <= std::numeric_limits<double>::max()) | !(ay <= std::numeric_limits<double>::max());
+      const double big = ax < ay ? ay : ax;
+      x.m = x.m < big ? big : x.m;
+      const double sx = ax > 0 ? ax : INFINITY, sy = ay > 0 ? ay : INFINITY;
+      const double small = sx < sy ? sx : sy;
+      x.lo = small < x.lo ? small : x.lo;
+    }
+    return x;
+  };
+  const std::size_t chunks = chunks_for(points.size(), threads);
+  std::vector<Extent> parts(chunks);
+  if (chunks == 1)
+    parts[0] = extent(points);
+  else
+    run_tasks(chunks, resolve_threads(threads), [&](std::size_t j) { parts[j] = extent(chunk(points, j, chunks)); });
+  double m = 0, lo = INFINITY;
   bool bad = false;
-  for (const Point& p : points) {
-    const double ax = std::fabs(p.x), ay = std::fabs(p.y);
-    bad |= !(ax <= std::numeric_limits<double>::max()) | !(ay <= std::numeric_limits<double>::max());
-    const double big = ax < ay ? ay : ax;
-    m = m < big ? big : m;
-    const double sx = ax > 0 ? ax : INFINITY, sy = ay > 0 ? ay : INFINITY;
-    const double small = sx < sy ? sx : sy;
-    lo = small < lo ? small : lo;
+  for (const Extent& x : parts) {  // max and min: the same whatever the parts
+    m = std::max(m, x.m);
+    lo = std::min(lo, x.lo);
+    bad |= x.bad;
   }
   for (std::size_t i = 0; bad && i < points.size(); ++i) {
     const Point& p = points[i];
@@ -104,20 +136,30 @@ double power_of_two(int k) { return k >= -1022 && k <= 1023 ? std::ldexp(1.0, k)
 
 }  // namespace
 
-void scale_vertices(const Frame& f, std::vector<Point>& points) {
+void scale_vertices(const Frame& f, std::vector<Point>& points, unsigned threads) {
   const double pk = power_of_two(f.k);
   if (pk > 0) {
-    // Branch-free passes over the whole input (the serial path): is any
-    // nonzero coordinate too small once scaled? If not, scale (nothing to do
-    // in the identity frame). Else the loop below names the first.
-    bool tiny = false;
-    for (const Point& p : points) {
-      const double sx = std::fabs(p.x * pk), sy = std::fabs(p.y * pk);
-      tiny |= ((sx < kMinCoordinate) & (p.x != 0)) | ((sy < kMinCoordinate) & (p.y != 0));
-    }
-    if (!tiny) {
+    // Branch-free passes over the whole input (the serial path), in parts:
+    // is any nonzero coordinate too small once scaled? If not, scale
+    // (nothing to do in the identity frame). Else the loop below names the
+    // first.
+    const double small = kMinCoordinate;
+    const std::size_t chunks = chunks_for(points.size(), threads);
+    std::vector<std::uint8_t> tiny(chunks, 0);
+    run_tasks(chunks, resolve_threads(threads), [&](std::size_t j) {
+      bool t = false;
+      for (const Point& p : chunk(points, j, chunks)) {
+        const double sx = std::fabs(p.x * pk), sy = std::fabs(p.y * pk);
+        t |= ((sx < small) & (p.x != 0)) | ((sy < small) & (p.y != 0));
+      }
+      tiny[j] = t;
+    });
+    if (std::find(tiny.begin(), tiny.end(), 1) == tiny.end()) {
       if (!f.identity())
-        for (Point& p : points) p = {p.x * pk, p.y * pk};
+        run_tasks(chunks, resolve_threads(threads), [&](std::size_t j) {
+          const std::size_t b = points.size() * j / chunks, e = points.size() * (j + 1) / chunks;
+          for (std::size_t i = b; i < e; ++i) points[i] = {points[i].x * pk, points[i].y * pk};
+        });
       return;
     }
   }
@@ -178,13 +220,10 @@ bool in_predicate_range(std::span<const Point> points, unsigned threads) {
     }
     return !out;
   };
-  constexpr std::size_t kMinChunk = std::size_t{1} << 17;
-  const std::size_t chunks = std::max<std::size_t>(1, std::min<std::size_t>(threads, points.size() / kMinChunk));
+  const std::size_t chunks = chunks_for(points.size(), threads);
   if (chunks == 1) return scan(points);
   std::vector<std::uint8_t> ok(chunks, 0);
-  run_tasks(chunks, threads, [&](std::size_t j) {
-    ok[j] = scan(points.subspan(points.size() * j / chunks, points.size() * (j + 1) / chunks - points.size() * j / chunks));
-  });
+  run_tasks(chunks, resolve_threads(threads), [&](std::size_t j) { ok[j] = scan(chunk(points, j, chunks)); });
   return std::all_of(ok.begin(), ok.end(), [](std::uint8_t b) { return b != 0; });
 }
 

@@ -37,14 +37,15 @@ struct Frame {
 };
 
 // The frame for these vertices. Throws InputError (naming the point) for a
-// NaN or infinite coordinate.
-Frame frame_for(std::span<const Point> points);
+// NaN or infinite coordinate. `threads` (0 = every hardware thread) scan
+// parts of the points; the frame and the error do not depend on it.
+Frame frame_for(std::span<const Point> points, unsigned threads = 1);
 
 // The vertices scaled into the frame. Throws InputError (naming the point)
 // for a nonzero coordinate below kMinCoordinate once scaled: one about
 // 2^400 times smaller than the largest, beyond what the exact predicates
-// resolve next to it.
-void scale_vertices(const Frame& f, std::vector<Point>& points);
+// resolve next to it. `threads` as for frame_for.
+void scale_vertices(const Frame& f, std::vector<Point>& points, unsigned threads = 1);
 // Hole and region seeds: scaled, clamped to +-2^100 (they stay outside the
 // vertices' box) and flushed to 0 below kMinCoordinate.
 void scale_seeds(const Frame& f, std::vector<Point>& points);
