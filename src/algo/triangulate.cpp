@@ -145,36 +145,50 @@ void detail::finish_vertex_markers(Mesh& mesh, unsigned threads) {
   markers.resize(mesh.num_vertices(), 0);
   const std::size_t na = mesh.num_vertex_attributes();
   mesh.vertex_attributes().resize(mesh.num_vertices() * na, 0.0);
+  // A compacted mesh has only real triangles, so its half-edges are scanned
+  // as one array, in chunks on the threads: each chunk lists the half-edges
+  // it finds, and the markers are then set in half-edge order, as one pass
+  // over the triangles sets them.
+  const bool compacted = mesh.compacted();
+  const std::size_t half_edges = 3 * std::size_t{mesh.num_triangle_slots()};
+  const auto found = [&](auto&& wanted) {
+    constexpr std::size_t kMinChunk = std::size_t{1} << 18;
+    const std::size_t chunks = std::max<std::size_t>(1, std::min<std::size_t>(threads, half_edges / kMinChunk));
+    std::vector<std::vector<HalfEdgeId>> lists(chunks);
+    detail::run_tasks(chunks, threads, [&](std::size_t j) {
+      const std::size_t end = half_edges * (j + 1) / chunks;
+      for (std::size_t e = half_edges * j / chunks; e < end; ++e)
+        if (wanted(static_cast<HalfEdgeId>(e))) lists[j].push_back(static_cast<HalfEdgeId>(e));
+    });
+    return lists;
+  };
   // A vertex on a segment with a nonzero marker (one added on a segment
   // after carry_vertex_data, say) takes it ...
   if (mesh.has_edge_markers()) {
-    for (TriId t : mesh.triangles()) {
-      for (HalfEdgeId e = 3 * t; e < 3 * t + 3; ++e) {
-        const int m = mesh.edge_marker(e);
-        if (m == 0 || !mesh.is_constrained(e)) continue;
-        if (markers[mesh.origin(e)] == 0) markers[mesh.origin(e)] = m;
-        if (markers[mesh.dest(e)] == 0) markers[mesh.dest(e)] = m;
-      }
+    const auto take = [&](HalfEdgeId e) {
+      const int m = mesh.edge_marker(e);
+      if (markers[mesh.origin(e)] == 0) markers[mesh.origin(e)] = m;
+      if (markers[mesh.dest(e)] == 0) markers[mesh.dest(e)] = m;
+    };
+    const auto marked = [&](HalfEdgeId e) {
+      return mesh.edge_marker(e) != 0 && mesh.is_constrained(e) && mesh.is_real(tri_of(e));
+    };
+    if (compacted) {
+      for (const std::vector<HalfEdgeId>& list : found(marked))
+        for (const HalfEdgeId e : list) take(e);
+    } else {
+      for (TriId t : mesh.triangles())
+        for (HalfEdgeId e = 3 * t; e < 3 * t + 3; ++e)
+          if (marked(e)) take(e);
     }
   }
-  // ... and a vertex still at 0 on the boundary gets 1. A compacted mesh
-  // has only real triangles: its boundary is where twins are kNone (one
-  // pass over the twins, a few instructions per half-edge).
-  // The scan runs in chunks of half-edges (each lists its boundary ones);
-  // the markers are then set in half-edge order, as one pass would.
-  if (mesh.compacted()) {
+  // ... and a vertex still at 0 on the boundary gets 1. A compacted mesh's
+  // boundary is where twins are kNone (a few instructions per half-edge).
+  if (compacted) {
     const std::span<const VertexId> tv = mesh.triangle_vertices();
     const std::span<const HalfEdgeId> tw = detail::MeshEditor(mesh).twins();
     const std::size_t n = mesh.num_vertices();
-    constexpr std::size_t kMinChunk = std::size_t{1} << 18;
-    const std::size_t chunks = std::max<std::size_t>(1, std::min<std::size_t>(threads, tv.size() / kMinChunk));
-    std::vector<std::vector<HalfEdgeId>> boundary(chunks);
-    detail::run_tasks(chunks, threads, [&](std::size_t j) {
-      const std::size_t end = tv.size() * (j + 1) / chunks;
-      for (std::size_t e = tv.size() * j / chunks; e < end; ++e)
-        if (tw[e] == kNone) boundary[j].push_back(static_cast<HalfEdgeId>(e));
-    });
-    for (const std::vector<HalfEdgeId>& list : boundary)
+    for (const std::vector<HalfEdgeId>& list : found([&](HalfEdgeId e) { return tw[e] == kNone; }))
       for (const HalfEdgeId e : list) {
         if (tv[e] >= n || tv[next_edge(e)] >= n) continue;  // (a removed slot)
         if (markers[tv[e]] == 0) markers[tv[e]] = 1;
