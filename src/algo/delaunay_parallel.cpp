@@ -421,7 +421,8 @@ std::optional<Mesh> parallel_delaunay(std::span<const Point> points, unsigned pa
   // by the first two tasks, beside the copies, not serially before them:
   // task 0 the points and out-edges, then it compacts the first slab in
   // place (below its old size); task 1 grows the triangle arrays within
-  // their capacity (their data does not move), then copies its slab. Tasks
+  // their capacity (their data does not move), then copies its slab (and
+  // fills the duplicate map). Tasks
   // are taken in index order, so a task that waits for these two waits for
   // tasks already running. A flag is set on every exit; `fill_failed` says
   // the fill threw (run_tasks rethrows it).
@@ -446,7 +447,6 @@ std::optional<Mesh> parallel_delaunay(std::span<const Point> points, unsigned pa
           MeshEditor(out).points().assign(points.begin(), points.end());
           // Duplicates keep kNone; every other vertex is given an out-edge.
           ve.assign(n, kNone);
-          if (stats) stats->duplicate_of.assign(n, kNone);
         } catch (...) {
           fill_failed.store(true, std::memory_order_release);
           throw;
@@ -467,6 +467,8 @@ std::optional<Mesh> parallel_delaunay(std::span<const Point> points, unsigned pa
         return;
       }
       copy_slab(s, offset[j], s.mesh.triangle_vertices().data(), MeshEditor(s.mesh).twins().data(), tvp, twp);
+      // After the copy has freed this slab's mesh: no higher peak of memory.
+      if (j == 1 && stats) stats->duplicate_of.assign(n, kNone);
     }
     if (wait(filled)) write_out_edges(s, ve.data());
   });
