@@ -156,9 +156,11 @@ void detail::finish_vertex_markers(Mesh& mesh, unsigned threads) {
     const std::size_t chunks = std::max<std::size_t>(1, std::min<std::size_t>(threads, half_edges / kMinChunk));
     std::vector<std::vector<HalfEdgeId>> lists(chunks);
     detail::run_tasks(chunks, threads, [&](std::size_t j) {
+      auto pick = wanted;  // a copy of its own: kept in registers, not reread after each push_back
+      std::vector<HalfEdgeId>& list = lists[j];
       const std::size_t end = half_edges * (j + 1) / chunks;
       for (std::size_t e = half_edges * j / chunks; e < end; ++e)
-        if (wanted(static_cast<HalfEdgeId>(e))) lists[j].push_back(static_cast<HalfEdgeId>(e));
+        if (pick(static_cast<HalfEdgeId>(e))) list.push_back(static_cast<HalfEdgeId>(e));
     });
     return lists;
   };
@@ -188,7 +190,8 @@ void detail::finish_vertex_markers(Mesh& mesh, unsigned threads) {
     const std::span<const VertexId> tv = mesh.triangle_vertices();
     const std::span<const HalfEdgeId> tw = detail::MeshEditor(mesh).twins();
     const std::size_t n = mesh.num_vertices();
-    for (const std::vector<HalfEdgeId>& list : found([&](HalfEdgeId e) { return tw[e] == kNone; }))
+    const HalfEdgeId* const twins = tw.data();
+    for (const std::vector<HalfEdgeId>& list : found([twins](HalfEdgeId e) { return twins[e] == kNone; }))
       for (const HalfEdgeId e : list) {
         if (tv[e] >= n || tv[next_edge(e)] >= n) continue;  // (a removed slot)
         if (markers[tv[e]] == 0) markers[tv[e]] = 1;
