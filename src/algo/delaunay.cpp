@@ -149,7 +149,7 @@ namespace detail {
 InsertionOrderDelaunay delaunay_in_insertion_order(std::span<const Point> points, TraceObserver* trace,
                                                    DelaunayStats* stats, std::chrono::steady_clock::time_point& t0,
                                                    std::size_t reserve_triangles, std::size_t reserve_points,
-                                                   const std::function<void()>& after_sort) {
+                                                   const std::function<void()>& after_sort, bool count) {
   const std::size_t n = points.size();
   InsertionOrderDelaunay out;
   // Build on a copy in insertion order, so the walk touches nearby memory.
@@ -198,7 +198,7 @@ InsertionOrderDelaunay delaunay_in_insertion_order(std::span<const Point> points
       if (got != v) out.dups.emplace_back(v, got);
     }
   }
-  MeshEditor(mesh).recount();
+  if (count) MeshEditor(mesh).recount();
   return out;
 }
 

@@ -133,7 +133,7 @@ void triangulate_slab(std::size_t n, Slab& s, bool first) {
     // (Its triangles, by Euler's bound, and its hole; all the points.)
     const std::size_t k = s.pts.size();
     built = delaunay_in_insertion_order(s.pts.span(), nullptr, nullptr, t0, first ? 2 * n + 2 + 2 * k + 2 : 0,
-                                        first ? n : 0, [&s] { s.pts.release(); });
+                                        first ? n : 0, [&s] { s.pts.release(); }, false);
   } catch (const InputError&) {
     s.failed = true;
     return;

@@ -19,7 +19,8 @@ namespace deltamesh::detail {
 // The triangle arrays get capacity for `reserve_triangles`, the points for
 // `reserve_points` (untouched pages until used). `after_sort`, when given,
 // is called once the points are sorted (`points` is not read again: it may
-// free them).
+// free them). `count` false leaves mesh.num_triangles() unset (a scan of
+// every slot that the slabs never read).
 struct InsertionOrderDelaunay {
   Mesh mesh;
   std::vector<VertexId> order;
@@ -28,7 +29,7 @@ struct InsertionOrderDelaunay {
 InsertionOrderDelaunay delaunay_in_insertion_order(std::span<const Point> points, TraceObserver* trace,
                                                    DelaunayStats* stats, std::chrono::steady_clock::time_point& t0,
                                                    std::size_t reserve_triangles = 0, std::size_t reserve_points = 0,
-                                                   const std::function<void()>& after_sort = {});
+                                                   const std::function<void()>& after_sort = {}, bool count = true);
 
 // Points below this per part are not worth a thread: delaunay() stays
 // sequential when n / threads is smaller.
