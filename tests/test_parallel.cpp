@@ -19,6 +19,8 @@
 #include <string>
 #include <vector>
 
+#include <unistd.h>
+
 #include "algo/delaunay_parallel.hpp"
 #include "algo/refine_parallel.hpp"
 #include "deltamesh-gen/generators.hpp"
@@ -388,7 +390,11 @@ TEST(ParallelParse, SamePointsAndErrorsAsOneThread) {
 TEST(ParallelParse, FirstErrorInFileOrderWins) {
   // Malformed lines in the first and in the second piece (2 threads): the
   // message names the first, as one thread's does.
-  const std::string path = (std::filesystem::temp_directory_path() / "dm_parallel_parse_two_bad.node").string();
+  // Named per process: another test_parallel running at the same time must
+  // not rewrite the file while it is mapped.
+  const std::string path = (std::filesystem::temp_directory_path() /
+                            ("dm_parallel_parse_two_bad_" + std::to_string(::getpid()) + ".node"))
+                               .string();
   {
     std::ofstream f(path);
     const std::size_t n = 150000;
