@@ -421,11 +421,10 @@ std::optional<Mesh> parallel_delaunay(std::span<const Point> points, unsigned pa
   // by the first two tasks, beside the copies, not serially before them:
   // task 0 the points and out-edges, then it compacts the first slab in
   // place (below its old size); task 1 grows the triangle arrays within
-  // their capacity (their data does not move), then copies its slab (and
-  // fills the duplicate map). Tasks
-  // are taken in index order, so a task that waits for these two waits for
-  // tasks already running. A flag is set on every exit; `fill_failed` says
-  // the fill threw (run_tasks rethrows it).
+  // their capacity (their data does not move), then copies its slab and
+  // fills the duplicate map. Tasks are taken in index order, so a task that
+  // waits for these two waits for tasks already running. A flag is set on
+  // every exit; `fill_failed` says the fill threw (run_tasks rethrows it).
   VertexId* const tvp = tv.data();
   HalfEdgeId* const twp = tw.data();
   std::atomic<bool> grown{false}, filled{false}, fill_failed{false};
