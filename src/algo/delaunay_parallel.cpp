@@ -289,11 +289,17 @@ std::vector<double> slab_boundaries(std::span<const Point> points, unsigned part
   const std::size_t step = std::max<std::size_t>(1, points.size() / 65536);
   std::vector<double> xs;
   for (std::size_t i = 0; i < points.size(); i += step) xs.push_back(points[i].x);
-  std::sort(xs.begin(), xs.end());
+  // The order statistics alone (a selection each, on the serial path), not
+  // a sort: the values at these ranks are the same either way.
+  const double lowest = *std::min_element(xs.begin(), xs.end());
   std::vector<double> cuts;
+  auto from = xs.begin();
   for (unsigned j = 1; j < parts; ++j) {
-    const double c = xs[j * xs.size() / parts];
-    if (c > xs.front() && (cuts.empty() || c > cuts.back())) cuts.push_back(c);
+    const auto at = xs.begin() + static_cast<std::ptrdiff_t>(j * xs.size() / parts);
+    std::nth_element(from, at, xs.end());  // what lies before `from` ranks below `at`
+    from = at;
+    const double c = *at;
+    if (c > lowest && (cuts.empty() || c > cuts.back())) cuts.push_back(c);
   }
   return cuts;
 }
