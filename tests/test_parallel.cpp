@@ -19,6 +19,8 @@
 #include <string>
 #include <vector>
 
+#include <unistd.h>
+
 #include "algo/delaunay_parallel.hpp"
 #include "algo/refine_parallel.hpp"
 #include "deltamesh-gen/generators.hpp"
@@ -431,6 +433,89 @@ TEST(ParallelParse, SamePointsAndErrorsAsOneThread) {
   // In the second piece with 2 threads, in the last with 4.
   for (unsigned threads : {2u, 4u}) EXPECT_EQ(message(threads), one_msg) << threads << " threads";
   std::remove(bad.c_str());
+}
+
+TEST(ParallelParse, FirstErrorInFileOrderWins) {
+  // Malformed lines in the first and in the second piece (2 threads): the
+  // message names the first, as one thread's does.
+  // Named per process: another test_parallel running at the same time must
+  // not rewrite the file while it is mapped.
+  const std::string path = (std::filesystem::temp_directory_path() /
+                            ("dm_parallel_parse_two_bad_" + std::to_string(::getpid()) + ".node"))
+                               .string();
+  {
+    std::ofstream f(path);
+    const std::size_t n = 150000;
+    f << n << " 2 0 0\n";
+    const auto pts = dm::gen::uniform_points(n, 4);
+    char buf[96];
+    for (std::size_t i = 0; i < n; ++i) {
+      const bool bad = i == 30000 || i == 140000;
+      std::snprintf(buf, sizeof buf, bad ? "%zu %.17g y%.17g\n" : "%zu %.17g %.17g\n", i, pts[i].x, pts[i].y);
+      f << buf;
+    }
+  }
+  auto message = [&](unsigned threads) {
+    try {
+      dm::read_node(path, threads);
+    } catch (const dm::ParseError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  const std::string one_msg = message(1);
+  EXPECT_NE(one_msg.find(":30002:"), std::string::npos) << one_msg;
+  for (unsigned threads : {2u, 4u}) EXPECT_EQ(message(threads), one_msg) << threads << " threads";
+  std::remove(path.c_str());
+}
+
+TEST(ParallelDelaunay, BoundaryMarkersAsSequential) {
+  // triangulate() marks the hull's vertices 1 from a scan of the half-edges
+  // in chunks on the threads: the same markers per vertex at every count.
+  const auto pts = dm::gen::uniform_points(200000, 13);
+  dm::Pslg g;
+  g.points = pts;
+  std::vector<int> expected;
+  for (unsigned threads : {1u, 2u, 4u}) {
+    dm::TriangulateOptions o;
+    o.use_segments = false;
+    o.threads = threads;
+    const dm::Mesh m = dm::triangulate(g, o);
+    std::vector<int> markers(m.vertex_markers().begin(), m.vertex_markers().end());
+    std::size_t hull_edges = 0;
+    for (dm::HalfEdgeId e = 0; e < m.triangle_vertices().size(); ++e) hull_edges += m.twin(e) == dm::kNone;
+    // On the hull of points in general position: as many vertices as edges.
+    EXPECT_EQ(static_cast<std::size_t>(std::count(markers.begin(), markers.end(), 1)), hull_edges) << threads;
+    EXPECT_GT(hull_edges, 10u);
+    if (threads == 1)
+      expected = markers;
+    else
+      EXPECT_EQ(markers, expected) << threads << " threads";
+  }
+}
+
+TEST(ParallelDelaunay, CoordinateErrorsAsSequential) {
+  // The coordinate check is one scan in chunks on the threads; a culprit
+  // deep in the input is named as the sequential check names it.
+  const auto base = dm::gen::uniform_points(300000, 17);
+  for (const double bad : {std::nan(""), 1e-250}) {
+    auto pts = base;
+    pts[250000].y = bad;
+    auto message = [&](unsigned threads) {
+      dm::DelaunayOptions o;
+      o.threads = threads;
+      try {
+        dm::delaunay(pts, o);
+      } catch (const dm::InputError& e) {
+        return std::string(e.what());
+      }
+      return std::string("no error");
+    };
+    const std::string one = message(1);
+    EXPECT_NE(one.find("250000"), std::string::npos) << one;
+    EXPECT_EQ(message(2), one);
+    EXPECT_EQ(message(4), one);
+  }
 }
 
 }  // namespace

@@ -149,7 +149,7 @@ namespace detail {
 InsertionOrderDelaunay delaunay_in_insertion_order(std::span<const Point> points, TraceObserver* trace,
                                                    DelaunayStats* stats, std::chrono::steady_clock::time_point& t0,
                                                    std::size_t reserve_triangles, std::size_t reserve_points,
-                                                   std::vector<Point>* release_after_sort) {
+                                                   const std::function<void()>& after_sort, bool count) {
   const std::size_t n = points.size();
   InsertionOrderDelaunay out;
   // Build on a copy in insertion order, so the walk touches nearby memory.
@@ -157,7 +157,7 @@ InsertionOrderDelaunay delaunay_in_insertion_order(std::span<const Point> points
   mesh.set_trace(trace);
   MeshEditor(mesh).points().reserve(std::max(n, reserve_points));
   out.order = hilbert_order(points, &MeshEditor(mesh).points());
-  if (release_after_sort) *release_after_sort = std::vector<Point>{};  // `points` is not read again
+  if (after_sort) after_sort();  // `points` is not read again
   if (trace) {  // vertices in insertion order until the caller renumbers them
     TraceAccess::phase(*trace, "delaunay");
     TraceAccess::points(*trace, 0, mesh.points());
@@ -198,7 +198,7 @@ InsertionOrderDelaunay delaunay_in_insertion_order(std::span<const Point> points
       if (got != v) out.dups.emplace_back(v, got);
     }
   }
-  MeshEditor(mesh).recount();
+  if (count) MeshEditor(mesh).recount();
   return out;
 }
 
@@ -206,13 +206,16 @@ InsertionOrderDelaunay delaunay_in_insertion_order(std::span<const Point> points
 
 Mesh delaunay(std::span<const Point> points, const DelaunayOptions& options, DelaunayStats* stats) {
   // Beyond the predicates' range: in an exact power-of-two frame. In range
-  // this costs nothing: check_coordinates' own scan finds it out.
+  // this costs one branch-free scan (in chunks on the threads).
+  const unsigned threads = detail::resolve_threads(options.threads);
   bool framed_run = false;
-  try {
-    check_coordinates(points);
-  } catch (const VertexError&) {
-    if (!detail::needs_frame(points)) throw;
-    framed_run = true;
+  if (!detail::in_predicate_range(points, threads)) {
+    try {
+      check_coordinates(points);
+    } catch (const VertexError&) {
+      if (!detail::needs_frame(points)) throw;
+      framed_run = true;
+    }
   }
   if (framed_run) {
     const detail::Frame f = detail::frame_for(points);
@@ -228,7 +231,6 @@ Mesh delaunay(std::span<const Point> points, const DelaunayOptions& options, Del
   const std::size_t n = points.size();
   if (n >= kNone - 2) throw InputError("too many points: at most 4294967292 are supported");
   if (!options.keep_ghosts && !options.trace) {  // a traced run is the sequential one, step by step
-    const unsigned threads = detail::resolve_threads(options.threads);
     const auto parts = static_cast<unsigned>(std::min<std::size_t>(threads, n / detail::kMinPointsPerPart));
     if (parts >= 2)
       if (std::optional<Mesh> m = detail::parallel_delaunay(points, parts, threads, stats)) return std::move(*m);

@@ -16,11 +16,17 @@
 #include "algo/delaunay_parallel.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <cstdlib>
 #include <limits>
+#include <memory>
+#include <new>
+#include <span>
 #include <string>
+#include <thread>
 #include <unordered_map>
 #include <utility>
 #include <vector>
@@ -68,9 +74,39 @@ bool disc_inside_slab(const Point& a, const Point& b, const Point& c, double lo,
   return centre - r - slack > lo && centre + r + slack < hi;
 }
 
+// An array whose elements are not zero-filled before they are written
+// (std::vector's resize would do that, serially, ahead of the parallel
+// passes that write it). malloc creates the elements: they are
+// implicit-lifetime types (C++20).
+template <class T>
+class RawArray {
+ public:
+  void allocate(std::size_t n) {
+    p_.reset(static_cast<T*>(std::malloc(std::max<std::size_t>(1, n) * sizeof(T))));
+    if (!p_) throw std::bad_alloc();
+    n_ = n;
+  }
+  void release() {
+    p_.reset();
+    n_ = 0;
+  }
+  T* data() const { return p_.get(); }
+  std::size_t size() const { return n_; }
+  std::span<const T> span() const { return {p_.get(), n_}; }
+
+ private:
+  struct Free {
+    void operator()(T* p) const { std::free(p); }
+  };
+  std::unique_ptr<T, Free> p_;
+  std::size_t n_ = 0;
+};
+
 // One slab: its points, its triangulation and what the merge needs of it.
 struct Slab {
   double lo = 0, hi = 0;       // lo <= x < hi
+  RawArray<VertexId> ids;      // its points' input indices, increasing (freed once mapped)
+  RawArray<Point> pts;         // those points (freed once sorted)
   Mesh mesh;                   // closed (ghosts), in the slab's insertion order
   std::vector<VertexId> gid;   // slab vertex -> input index (of the first copy, for duplicates)
   std::size_t duplicates = 0;
@@ -81,39 +117,30 @@ struct Slab {
   std::vector<std::uint8_t> in_gap;    // per slab vertex: in a dropped triangle or on a seam
   std::vector<VertexId> gap_vertices;  // input indices of those vertices
   std::vector<HalfEdgeId> open;        // the seams as half-edges of the result
+  std::vector<HalfEdgeId> last;        // per slab vertex: its out-edge in the result, or kNone
   bool failed = false;         // no triangle: the decomposition does not apply
 };
 
 // Triangulates and classifies one slab, all in the slab's insertion
 // (BRIO/Hilbert) order: its triangles and their points are near each other
 // in memory there, while input numbering would scatter every point access.
-void triangulate_slab(std::span<const Point> points, Slab& s, bool first) {
-  std::vector<VertexId> ids;  // slab vertex (input order) -> input index
-  std::vector<Point> pts;
-  std::size_t count = 0;  // sized once: no regrowth copies
-  for (const Point& p : points) count += p.x >= s.lo && p.x < s.hi;
-  ids.reserve(count);
-  pts.reserve(count);
-  for (std::size_t i = 0; i < points.size(); ++i)
-    if (points[i].x >= s.lo && points[i].x < s.hi) {
-      ids.push_back(static_cast<VertexId>(i));
-      pts.push_back(points[i]);
-    }
+void triangulate_slab(std::size_t n, Slab& s, bool first) {
+  const VertexId* ids = s.ids.data();  // slab vertex (input order) -> input index
   InsertionOrderDelaunay built;
   try {
     auto t0 = Clock::now();
     // The first slab's arrays also take the other slabs' triangles later.
     // (Its triangles, by Euler's bound, and its hole; all the points.)
-    const std::size_t n = points.size();
-    built = delaunay_in_insertion_order(pts, nullptr, nullptr, t0, first ? 2 * n + 2 + 2 * pts.size() + 2 : 0,
-                                        first ? n : 0, &pts);
+    const std::size_t k = s.pts.size();
+    built = delaunay_in_insertion_order(s.pts.span(), nullptr, nullptr, t0, first ? 2 * n + 2 + 2 * k + 2 : 0,
+                                        first ? n : 0, [&s] { s.pts.release(); }, false);
   } catch (const InputError&) {
     s.failed = true;
     return;
   }
   s.mesh = std::move(built.mesh);
   const Mesh& m = s.mesh;
-  const std::size_t k = ids.size();
+  const std::size_t k = s.ids.size();
   s.gid.resize(k);
   for (std::size_t v = 0; v < k; ++v) s.gid[v] = ids[built.order[v]];
   // Of equal points the first in input order is kept (as delaunay() does).
@@ -124,7 +151,7 @@ void triangulate_slab(std::span<const Point> points, Slab& s, bool first) {
     if (own != s.gid[got]) s.dup_of.emplace_back(own, s.gid[got]);
   }
   s.duplicates = built.dups.size();
-  ids = std::vector<VertexId>{};
+  s.ids.release();
   built.order = std::vector<VertexId>{};
 
   // The dropped triangles (and the ghosts), found from the hull instead of testing every
@@ -186,17 +213,17 @@ void triangulate_slab(std::span<const Point> points, Slab& s, bool first) {
 }
 
 // Writes a slab's kept triangles (slab arrays sv, sw) into the result at
-// triangle `first`, their vertices' out-edges for vertices no other part
-// touches, and the seams' half-edges; then frees the slab's mesh (on this
-// thread, in parallel). The first slab is moved in place (sv == tv,
-// first == 0): a kept triangle only moves to a lower slot, after it is read.
-void copy_slab(Slab& s, std::size_t first, const VertexId* sv, const HalfEdgeId* sw, VertexId* tv, HalfEdgeId* tw,
-               HalfEdgeId* ve) {
+// triangle `first`, notes their vertices' out-edges (s.last) and the seams'
+// half-edges; then frees the slab's mesh (on this thread, in parallel). The
+// first slab is moved in place (sv == tv, first == 0): a kept triangle only
+// moves to a lower slot, after it is read.
+void copy_slab(Slab& s, std::size_t first, const VertexId* sv, const HalfEdgeId* sw, VertexId* tv, HalfEdgeId* tw) {
   const std::size_t base = 3 * first;
   // The last out-edge in slot order, as Mesh::compact() picks it: noted per
   // slab vertex (near in memory, in insertion order), then written once per
-  // vertex into the result's input numbering.
-  std::vector<HalfEdgeId> last(s.gid.size(), kNone);
+  // vertex into the result's input numbering (write_out_edges).
+  std::vector<HalfEdgeId>& last = s.last;
+  last.assign(s.gid.size(), kNone);
   for (TriId t = 0; t < s.rank.size(); ++t) {
     if (s.rank[t] == kNone) continue;
     const std::size_t f = base + 3 * std::size_t{s.rank[t]};
@@ -209,12 +236,51 @@ void copy_slab(Slab& s, std::size_t first, const VertexId* sv, const HalfEdgeId*
       tw[f + i] = u == kNone ? kNone : static_cast<HalfEdgeId>(base + 3 * std::size_t{u} + o % 3);
     }
   }
-  for (std::size_t v = 0; v < last.size(); ++v)
-    if (last[v] != kNone && !s.in_gap[v]) ve[s.gid[v]] = last[v];
   for (HalfEdgeId e : s.seams) s.open.push_back(static_cast<HalfEdgeId>(base + 3 * std::size_t{s.rank[tri_of(e)]} + e % 3));
   s.mesh = Mesh{};
   s.rank = std::vector<TriId>{};
+}
+
+// The out-edges of the slab's vertices that no other part touches.
+void write_out_edges(Slab& s, HalfEdgeId* ve) {
+  for (std::size_t v = 0; v < s.last.size(); ++v)
+    if (s.last[v] != kNone && !s.in_gap[v]) ve[s.gid[v]] = s.last[v];
+  s.last = std::vector<HalfEdgeId>{};
   s.in_gap = std::vector<std::uint8_t>{};
+}
+
+// Each slab's points (input order, with their input indices), from one
+// partition pass in parallel chunks: counted per chunk and slab, then
+// scattered, instead of every slab scanning all the points.
+void partition_points(std::span<const Point> points, const std::vector<double>& cuts, std::vector<Slab>& slabs,
+                      unsigned threads) {
+  const std::size_t n = points.size(), parts = slabs.size();
+  constexpr std::size_t kMinChunk = std::size_t{1} << 16;
+  const std::size_t chunks = std::max<std::size_t>(1, std::min<std::size_t>(threads, n / kMinChunk));
+  const auto begin = [&](std::size_t c) { return n * c / chunks; };
+  const auto slab_of = [&cuts](double x) {
+    return static_cast<std::size_t>(std::upper_bound(cuts.begin(), cuts.end(), x) - cuts.begin());
+  };
+  std::vector<std::size_t> at(chunks * parts, 0);  // per chunk and slab: a count, then where it starts
+  run_tasks(chunks, threads, [&](std::size_t c) {
+    std::vector<std::size_t> count(parts, 0);
+    for (std::size_t i = begin(c); i < begin(c + 1); ++i) ++count[slab_of(points[i].x)];
+    std::copy(count.begin(), count.end(), at.begin() + c * parts);
+  });
+  for (std::size_t j = 0; j < parts; ++j) {
+    std::size_t total = 0;
+    for (std::size_t c = 0; c < chunks; ++c) total += std::exchange(at[c * parts + j], total);
+    slabs[j].ids.allocate(total);
+    slabs[j].pts.allocate(total);
+  }
+  run_tasks(chunks, threads, [&](std::size_t c) {
+    std::vector<std::size_t> pos(at.begin() + c * parts, at.begin() + (c + 1) * parts);
+    for (std::size_t i = begin(c); i < begin(c + 1); ++i) {
+      const std::size_t j = slab_of(points[i].x), k = pos[j]++;
+      slabs[j].ids.data()[k] = static_cast<VertexId>(i);
+      slabs[j].pts.data()[k] = points[i];
+    }
+  });
 }
 
 // Slab boundaries: quantiles of x over a fixed sample of the points, so the
@@ -223,11 +289,17 @@ std::vector<double> slab_boundaries(std::span<const Point> points, unsigned part
   const std::size_t step = std::max<std::size_t>(1, points.size() / 65536);
   std::vector<double> xs;
   for (std::size_t i = 0; i < points.size(); i += step) xs.push_back(points[i].x);
-  std::sort(xs.begin(), xs.end());
+  // The order statistics alone (a selection each, on the serial path), not
+  // a sort: the values at these ranks are the same either way.
+  const double lowest = *std::min_element(xs.begin(), xs.end());
   std::vector<double> cuts;
+  auto from = xs.begin();
   for (unsigned j = 1; j < parts; ++j) {
-    const double c = xs[j * xs.size() / parts];
-    if (c > xs.front() && (cuts.empty() || c > cuts.back())) cuts.push_back(c);
+    const auto at = xs.begin() + static_cast<std::ptrdiff_t>(j * xs.size() / parts);
+    std::nth_element(from, at, xs.end());  // what lies before `from` ranks below `at`
+    from = at;
+    const double c = *at;
+    if (c > lowest && (cuts.empty() || c > cuts.back())) cuts.push_back(c);
   }
   return cuts;
 }
@@ -248,8 +320,8 @@ std::optional<Mesh> parallel_delaunay(std::span<const Point> points, unsigned pa
   }
   // The first slab's triangle arrays become the result's (sized for all of
   // it, by Euler's bound): no copy of that slab and no second allocation.
-  run_tasks(slabs.size(), threads,
-            [&](std::size_t j) { triangulate_slab(points, slabs[j], j == 0); });
+  partition_points(points, cuts, slabs, threads);
+  run_tasks(slabs.size(), threads, [&](std::size_t j) { triangulate_slab(n, slabs[j], j == 0); });
   for (const Slab& s : slabs)
     if (s.failed) return std::nullopt;
   if (stats) stats->sort_seconds = seconds_since(t0);
@@ -341,23 +413,69 @@ std::optional<Mesh> parallel_delaunay(std::span<const Point> points, unsigned pa
   std::size_t duplicates = 0;
   for (const Slab& s : slabs) duplicates += s.duplicates;
   Mesh out;
-  MeshEditor(out).points() = std::move(MeshEditor(slabs[0].mesh).points());  // capacity for all
-  MeshEditor(out).points().assign(points.begin(), points.end());
-  // Duplicates keep kNone; every other vertex is given an out-edge below.
-  MeshEditor(out).out_edges().assign(n, kNone);
   std::vector<VertexId>& tv = MeshEditor(out).triangle_vertices();
   std::vector<HalfEdgeId>& tw = MeshEditor(out).twins();
   std::vector<HalfEdgeId>& ve = MeshEditor(out).out_edges();
   tv = std::move(MeshEditor(slabs[0].mesh).triangle_vertices());
   tw = std::move(MeshEditor(slabs[0].mesh).twins());
   if (tv.size() != 3 * first_slots) throw InternalError("parallel_delaunay", "the first slab's arrays changed size");
-  tv.resize(3 * end);  // within the capacity reserved: the first slab's part is not copied
-  tw.resize(3 * end);
+  if (3 * end > tv.capacity() || 3 * end > tw.capacity()) {  // (reserved by Euler's bound: not expected)
+    tv.resize(3 * end);
+    tw.resize(3 * end);
+  }
+  // The result's arrays are filled (std::vector zero-fills what it grows)
+  // by the first two tasks, beside the copies, not serially before them:
+  // task 0 the points and out-edges, then it compacts the first slab in
+  // place (below its old size); task 1 grows the triangle arrays within
+  // their capacity (their data does not move), then copies its slab and
+  // fills the duplicate map. Tasks are taken in index order, so a task that
+  // waits for these two waits for tasks already running. A flag is set on
+  // every exit; `fill_failed` says the fill threw (run_tasks rethrows it).
+  VertexId* const tvp = tv.data();
+  HalfEdgeId* const twp = tw.data();
+  std::atomic<bool> grown{false}, filled{false}, fill_failed{false};
+  struct Raise {
+    std::atomic<bool>& flag;
+    ~Raise() { flag.store(true, std::memory_order_release); }
+  };
+  const auto wait = [&](const std::atomic<bool>& flag) {
+    while (!flag.load(std::memory_order_acquire)) std::this_thread::yield();
+    return !fill_failed.load(std::memory_order_acquire);
+  };
   run_tasks(slabs.size(), threads, [&](std::size_t j) {
-    const Mesh& m = slabs[j].mesh;
-    const VertexId* sv = j == 0 ? tv.data() : m.triangle_vertices().data();
-    const HalfEdgeId* sw = j == 0 ? tw.data() : MeshEditor(slabs[j].mesh).twins().data();
-    copy_slab(slabs[j], offset[j], sv, sw, tv.data(), tw.data(), ve.data());
+    Slab& s = slabs[j];
+    if (j == 0) {
+      {
+        const Raise done{filled};
+        try {
+          MeshEditor(out).points() = std::move(MeshEditor(s.mesh).points());  // capacity for all
+          MeshEditor(out).points().assign(points.begin(), points.end());
+          // Duplicates keep kNone; every other vertex is given an out-edge.
+          ve.assign(n, kNone);
+        } catch (...) {
+          fill_failed.store(true, std::memory_order_release);
+          throw;
+        }
+      }
+      copy_slab(s, 0, tvp, twp, tvp, twp);
+    } else {
+      if (j == 1) {
+        const Raise done{grown};
+        try {
+          tv.resize(3 * end);
+          tw.resize(3 * end);
+        } catch (...) {
+          fill_failed.store(true, std::memory_order_release);
+          throw;
+        }
+      } else if (!wait(grown)) {
+        return;
+      }
+      copy_slab(s, offset[j], s.mesh.triangle_vertices().data(), MeshEditor(s.mesh).twins().data(), tvp, twp);
+      // After the copy has freed this slab's mesh: no higher peak of memory.
+      if (j == 1 && stats) stats->duplicate_of.assign(n, kNone);
+    }
+    if (wait(filled)) write_out_edges(s, ve.data());
   });
   // Half-edges left without a twin: seams, the gap's edges along them, and
   // the hull; paired by their vertices. The gap's vertices get their
@@ -426,7 +544,6 @@ std::optional<Mesh> parallel_delaunay(std::span<const Point> points, unsigned pa
 
   if (stats) {
     stats->duplicates = duplicates;
-    stats->duplicate_of.assign(n, kNone);
     for (const Slab& s : slabs)
       for (const auto& [copy, kept] : s.dup_of) stats->duplicate_of[copy] = kept;
     stats->insert_seconds = seconds_since(t0);

@@ -1,6 +1,7 @@
 // Delaunay triangulation of a point set on several threads (docs/scaling.md).
 #pragma once
 #include <chrono>
+#include <functional>
 #include <optional>
 #include <span>
 #include <utility>
@@ -16,8 +17,10 @@ namespace deltamesh::detail {
 // Throws InputError when the points make no triangle. `t0` is the start of
 // the sort on entry (for stats->sort_seconds) and of the insertion on return.
 // The triangle arrays get capacity for `reserve_triangles`, the points for
-// `reserve_points` (untouched pages until used). `release_after_sort`, when
-// given, is the vector `points` views: it is freed once they are sorted.
+// `reserve_points` (untouched pages until used). `after_sort`, when given,
+// is called once the points are sorted (`points` is not read again: it may
+// free them). `count` false leaves mesh.num_triangles() unset (a scan of
+// every slot that the slabs never read).
 struct InsertionOrderDelaunay {
   Mesh mesh;
   std::vector<VertexId> order;
@@ -26,7 +29,7 @@ struct InsertionOrderDelaunay {
 InsertionOrderDelaunay delaunay_in_insertion_order(std::span<const Point> points, TraceObserver* trace,
                                                    DelaunayStats* stats, std::chrono::steady_clock::time_point& t0,
                                                    std::size_t reserve_triangles = 0, std::size_t reserve_points = 0,
-                                                   std::vector<Point>* release_after_sort = nullptr);
+                                                   const std::function<void()>& after_sort = {}, bool count = true);
 
 // Points below this per part are not worth a thread: delaunay() stays
 // sequential when n / threads is smaller.

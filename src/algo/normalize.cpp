@@ -3,10 +3,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <limits>
+#include <span>
 #include <string>
+#include <vector>
 
+#include "core/parallel.hpp"
 #include "deltamesh/errors.hpp"
 #include "deltamesh/predicates.hpp"
 #include "mesh/editor.hpp"
@@ -25,6 +29,17 @@ double largest(std::span<const Point> points) {
   double m = 0;
   for (const Point& p : points) m = std::max({m, std::fabs(p.x), std::fabs(p.y)});
   return m;
+}
+
+// Parts of [0, n) for up to `threads` threads (0 = every hardware one):
+// one part below kMinChunk elements per part.
+constexpr std::size_t kMinChunk = std::size_t{1} << 17;
+std::size_t chunks_for(std::size_t n, unsigned threads) {
+  return std::max<std::size_t>(1, std::min<std::size_t>(resolve_threads(threads), n / kMinChunk));
+}
+std::span<const Point> chunk(std::span<const Point> points, std::size_t j, std::size_t chunks) {
+  const std::size_t b = points.size() * j / chunks, e = points.size() * (j + 1) / chunks;
+  return points.subspan(b, e - b);
 }
 
 std::string show(double v) {
@@ -53,9 +68,40 @@ std::function<double(double, double)> Frame::length_field_to(std::function<doubl
   };
 }
 
-Frame frame_for(std::span<const Point> points) {
-  double m = 0, lo = INFINITY;  // largest, and smallest nonzero, magnitude
-  for (std::size_t i = 0; i < points.size(); ++i) {
+Frame frame_for(std::span<const Point> points, unsigned threads) {
+  // One pass in parts (the whole input, on the serial path). A NaN or an
+  // infinity only sets a flag; the loop below then names the first.
+  struct Extent {
+    double m = 0, lo = INFINITY;  // largest, and smallest nonzero, magnitude
+    bool bad = false;
+  };
+  const auto extent = [](std::span<const Point> part) {
+    Extent x;
+    for (const Point& p : part) {
+      const double ax = std::fabs(p.x), ay = std::fabs(p.y);
+      x.bad |= !(ax <= std::numeric_limits<double>::max()) | !(ay <= std::numeric_limits<double>::max());
+      const double big = ax < ay ? ay : ax;
+      x.m = x.m < big ? big : x.m;
+      const double sx = ax > 0 ? ax : INFINITY, sy = ay > 0 ? ay : INFINITY;
+      const double small = sx < sy ? sx : sy;
+      x.lo = small < x.lo ? small : x.lo;
+    }
+    return x;
+  };
+  const std::size_t chunks = chunks_for(points.size(), threads);
+  std::vector<Extent> parts(chunks);
+  if (chunks == 1)
+    parts[0] = extent(points);
+  else
+    run_tasks(chunks, resolve_threads(threads), [&](std::size_t j) { parts[j] = extent(chunk(points, j, chunks)); });
+  double m = 0, lo = INFINITY;
+  bool bad = false;
+  for (const Extent& x : parts) {  // max and min: the same whatever the parts
+    m = std::max(m, x.m);
+    lo = std::min(lo, x.lo);
+    bad |= x.bad;
+  }
+  for (std::size_t i = 0; bad && i < points.size(); ++i) {
     const Point& p = points[i];
     if (!std::isfinite(p.x) || !std::isfinite(p.y)) {
       const bool bad_x = !std::isfinite(p.x);
@@ -63,10 +109,6 @@ Frame frame_for(std::span<const Point> points) {
       throw InputError(std::string("coordinate ") + (bad_x ? "x" : "y") + " of point " + std::to_string(i) + " is " +
                            (std::isnan(v) ? "NaN" : "infinite"),
                        i);
-    }
-    for (const double v : {std::fabs(p.x), std::fabs(p.y)}) {
-      m = std::max(m, v);
-      if (v > 0) lo = std::min(lo, v);
     }
   }
   Frame f;
@@ -94,9 +136,34 @@ double power_of_two(int k) { return k >= -1022 && k <= 1023 ? std::ldexp(1.0, k)
 
 }  // namespace
 
-void scale_vertices(const Frame& f, std::vector<Point>& points) {
-  const double big = largest(points);  // before the loop scales points in place
+void scale_vertices(const Frame& f, std::vector<Point>& points, unsigned threads) {
   const double pk = power_of_two(f.k);
+  if (pk > 0) {
+    // Branch-free passes over the whole input (the serial path), in parts:
+    // is any nonzero coordinate too small once scaled? If not, scale
+    // (nothing to do in the identity frame). Else the loop below names the
+    // first.
+    const double small = kMinCoordinate;
+    const std::size_t chunks = chunks_for(points.size(), threads);
+    std::vector<std::uint8_t> tiny(chunks, 0);
+    run_tasks(chunks, resolve_threads(threads), [&](std::size_t j) {
+      bool t = false;
+      for (const Point& p : chunk(points, j, chunks)) {
+        const double sx = std::fabs(p.x * pk), sy = std::fabs(p.y * pk);
+        t |= ((sx < small) & (p.x != 0)) | ((sy < small) & (p.y != 0));
+      }
+      tiny[j] = t;
+    });
+    if (std::find(tiny.begin(), tiny.end(), 1) == tiny.end()) {
+      if (!f.identity())
+        run_tasks(chunks, resolve_threads(threads), [&](std::size_t j) {
+          const std::size_t b = points.size() * j / chunks, e = points.size() * (j + 1) / chunks;
+          for (std::size_t i = b; i < e; ++i) points[i] = {points[i].x * pk, points[i].y * pk};
+        });
+      return;
+    }
+  }
+  const double big = largest(points);  // before the loop scales points in place
   for (std::size_t i = 0; i < points.size(); ++i) {
     Point& p = points[i];
     const Point q{times_power_of_two(p.x, f.k, pk), times_power_of_two(p.y, f.k, pk)};
@@ -143,6 +210,23 @@ bool needs_frame(std::span<const Point> points) {
   return false;
 }
 
+bool in_predicate_range(std::span<const Point> points, unsigned threads) {
+  const double hi = kMaxCoordinate, lo = kMinCoordinate;
+  const auto scan = [hi, lo](std::span<const Point> part) {
+    bool out = false;  // NaN fails every comparison
+    for (const Point& p : part) {
+      const double ax = std::fabs(p.x), ay = std::fabs(p.y);
+      out |= !(ax <= hi) | !(ay <= hi) | ((ax < lo) & (ax != 0)) | ((ay < lo) & (ay != 0));
+    }
+    return !out;
+  };
+  const std::size_t chunks = chunks_for(points.size(), threads);
+  if (chunks == 1) return scan(points);
+  std::vector<std::uint8_t> ok(chunks, 0);
+  run_tasks(chunks, resolve_threads(threads), [&](std::size_t j) { ok[j] = scan(chunk(points, j, chunks)); });
+  return std::all_of(ok.begin(), ok.end(), [](std::uint8_t b) { return b != 0; });
+}
+
 Pslg scaled_pslg(const Frame& f, Pslg pslg) {
   scale_vertices(f, pslg.points);
   scale_seeds(f, pslg.holes);
@@ -175,6 +259,7 @@ void scale_mesh(const Frame& f, Mesh& mesh) {
 }
 
 void restore(const Frame& f, Mesh& mesh) {
+  if (f.identity()) return;  // every vertex and bound as it is
   const double pk = power_of_two(-f.k);
   for (Point& p : detail::MeshEditor(mesh).points())
     p = {times_power_of_two(p.x, -f.k, pk), times_power_of_two(p.y, -f.k, pk)};

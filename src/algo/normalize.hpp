@@ -37,14 +37,15 @@ struct Frame {
 };
 
 // The frame for these vertices. Throws InputError (naming the point) for a
-// NaN or infinite coordinate.
-Frame frame_for(std::span<const Point> points);
+// NaN or infinite coordinate. `threads` (0 = every hardware thread) scan
+// parts of the points; the frame and the error do not depend on it.
+Frame frame_for(std::span<const Point> points, unsigned threads = 1);
 
 // The vertices scaled into the frame. Throws InputError (naming the point)
 // for a nonzero coordinate below kMinCoordinate once scaled: one about
 // 2^400 times smaller than the largest, beyond what the exact predicates
-// resolve next to it.
-void scale_vertices(const Frame& f, std::vector<Point>& points);
+// resolve next to it. `threads` as for frame_for.
+void scale_vertices(const Frame& f, std::vector<Point>& points, unsigned threads = 1);
 // Hole and region seeds: scaled, clamped to +-2^100 (they stay outside the
 // vertices' box) and flushed to 0 below kMinCoordinate.
 void scale_seeds(const Frame& f, std::vector<Point>& points);
@@ -55,6 +56,10 @@ void scale_seeds(const Frame& f, std::vector<Point>& points);
 // them). The library's lower-level entry points (delaunay(), triangulate(),
 // refine()) mesh in a frame only then, so in-range calls are unchanged.
 bool needs_frame(std::span<const Point> points);
+// Whether every coordinate is finite and in the predicates' range (what
+// check_coordinates() accepts), in one branch-free scan on up to `threads`
+// threads; check_coordinates() names the culprit when it is not.
+bool in_predicate_range(std::span<const Point> points, unsigned threads);
 // A PSLG (points, holes, region seeds and their area bounds) scaled into f.
 Pslg scaled_pslg(const Frame& f, Pslg pslg);
 // Refinement's area and length bounds (global, callbacks) scaled into f.

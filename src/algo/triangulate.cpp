@@ -7,12 +7,15 @@
 #include <cmath>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "deltamesh/errors.hpp"
 #include "deltamesh/predicates.hpp"
 #include "algo/normalize.hpp"
 #include "algo/validate_overlap.hpp"
 #include "algo/vertex_data.hpp"
+#include "core/parallel.hpp"
+#include "mesh/editor.hpp"
 #include "mesh/edge_rules.hpp"
 #include "mesh/trace_hooks.hpp"
 
@@ -135,34 +138,65 @@ std::size_t count_constrained_edges(const Mesh& mesh) {
 
 void detail::interpolate_vertex_attributes(Mesh& mesh, VertexId v, std::size_t n) { interpolate_attributes(mesh, v, n); }
 
-void finish_vertex_markers(Mesh& mesh) {
+void finish_vertex_markers(Mesh& mesh) { detail::finish_vertex_markers(mesh, 1); }
+
+void detail::finish_vertex_markers(Mesh& mesh, unsigned threads) {
   std::vector<int>& markers = mesh.vertex_markers();
   markers.resize(mesh.num_vertices(), 0);
   const std::size_t na = mesh.num_vertex_attributes();
   mesh.vertex_attributes().resize(mesh.num_vertices() * na, 0.0);
+  // A compacted mesh has only real triangles, so its half-edges are scanned
+  // as one array, in chunks on the threads: each chunk lists the half-edges
+  // it finds, and the markers are then set in half-edge order, as one pass
+  // over the triangles sets them.
+  const bool compacted = mesh.compacted();
+  const std::size_t half_edges = 3 * std::size_t{mesh.num_triangle_slots()};
+  const auto found = [&](auto&& wanted) {
+    constexpr std::size_t kMinChunk = std::size_t{1} << 18;
+    const std::size_t chunks = std::max<std::size_t>(1, std::min<std::size_t>(threads, half_edges / kMinChunk));
+    std::vector<std::vector<HalfEdgeId>> lists(chunks);
+    detail::run_tasks(chunks, threads, [&](std::size_t j) {
+      auto pick = wanted;  // a copy of its own: kept in registers, not reread after each push_back
+      std::vector<HalfEdgeId>& list = lists[j];
+      const std::size_t end = half_edges * (j + 1) / chunks;
+      for (std::size_t e = half_edges * j / chunks; e < end; ++e)
+        if (pick(static_cast<HalfEdgeId>(e))) list.push_back(static_cast<HalfEdgeId>(e));
+    });
+    return lists;
+  };
   // A vertex on a segment with a nonzero marker (one added on a segment
   // after carry_vertex_data, say) takes it ...
   if (mesh.has_edge_markers()) {
-    for (TriId t : mesh.triangles()) {
-      for (HalfEdgeId e = 3 * t; e < 3 * t + 3; ++e) {
-        const int m = mesh.edge_marker(e);
-        if (m == 0 || !mesh.is_constrained(e)) continue;
-        if (markers[mesh.origin(e)] == 0) markers[mesh.origin(e)] = m;
-        if (markers[mesh.dest(e)] == 0) markers[mesh.dest(e)] = m;
-      }
+    const auto take = [&](HalfEdgeId e) {
+      const int m = mesh.edge_marker(e);
+      if (markers[mesh.origin(e)] == 0) markers[mesh.origin(e)] = m;
+      if (markers[mesh.dest(e)] == 0) markers[mesh.dest(e)] = m;
+    };
+    const auto marked = [&](HalfEdgeId e) {
+      return mesh.edge_marker(e) != 0 && mesh.is_constrained(e) && mesh.is_real(tri_of(e));
+    };
+    if (compacted) {
+      for (const std::vector<HalfEdgeId>& list : found(marked))
+        for (const HalfEdgeId e : list) take(e);
+    } else {
+      for (TriId t : mesh.triangles())
+        for (HalfEdgeId e = 3 * t; e < 3 * t + 3; ++e)
+          if (marked(e)) take(e);
     }
   }
-  // ... and a vertex still at 0 on the boundary gets 1. A compacted mesh
-  // has only real triangles: its boundary is where twins are kNone (one
-  // pass over the twins, a few instructions per half-edge).
-  if (mesh.compacted()) {
+  // ... and a vertex still at 0 on the boundary gets 1. A compacted mesh's
+  // boundary is where twins are kNone (a few instructions per half-edge).
+  if (compacted) {
     const std::span<const VertexId> tv = mesh.triangle_vertices();
+    const std::span<const HalfEdgeId> tw = detail::MeshEditor(mesh).twins();
     const std::size_t n = mesh.num_vertices();
-    for (HalfEdgeId e = 0; e < tv.size(); ++e) {
-      if (mesh.twin(e) != kNone || tv[e] >= n || tv[next_edge(e)] >= n) continue;  // (a removed slot)
-      if (markers[tv[e]] == 0) markers[tv[e]] = 1;
-      if (markers[tv[next_edge(e)]] == 0) markers[tv[next_edge(e)]] = 1;
-    }
+    const HalfEdgeId* const twins = tw.data();
+    for (const std::vector<HalfEdgeId>& list : found([twins](HalfEdgeId e) { return twins[e] == kNone; }))
+      for (const HalfEdgeId e : list) {
+        if (tv[e] >= n || tv[next_edge(e)] >= n) continue;  // (a removed slot)
+        if (markers[tv[e]] == 0) markers[tv[e]] = 1;
+        if (markers[tv[next_edge(e)]] == 0) markers[tv[next_edge(e)]] = 1;
+      }
     return;
   }
   for (TriId t : mesh.triangles()) {
@@ -267,7 +301,7 @@ Mesh triangulate_in_range(const Pslg& pslg, const TriangulateOptions& options, T
 
   t = Clock::now();
   if (!mesh.compacted()) mesh.compact();
-  finish_vertex_markers(mesh);
+  detail::finish_vertex_markers(mesh, detail::resolve_threads(options.threads));
   st.finish_seconds = seconds_since(t);
   st.vertices = mesh.num_vertices();
   st.triangles = mesh.num_triangles();

@@ -13,4 +13,9 @@ namespace deltamesh::detail {
 // attribute array must already hold v.
 void interpolate_vertex_attributes(Mesh& mesh, VertexId v, std::size_t n);
 
+// finish_vertex_markers() (deltamesh/triangulate.hpp) with the scan for
+// boundary edges of a compacted mesh on up to `threads` threads; the same
+// markers for every thread count.
+void finish_vertex_markers(Mesh& mesh, unsigned threads);
+
 }  // namespace deltamesh::detail

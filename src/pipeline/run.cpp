@@ -276,7 +276,7 @@ void check_result(const Plan& plan, RunResult& res, Phases& phases) {
 // The input and every size in the plan in the frame (algo/normalize.hpp):
 // the run meshes there and restore_result maps back.
 void normalize_input(const detail::Frame& f, Plan& plan, RunInput& in) {
-  detail::scale_vertices(f, in.pslg.points);
+  detail::scale_vertices(f, in.pslg.points, plan.threads);
   detail::scale_seeds(f, in.pslg.holes);
   std::vector<Point> seeds;
   for (const RegionSeed& r : in.pslg.regions) seeds.push_back(r.p);
@@ -339,7 +339,7 @@ RunResult run(const Plan& user_plan, RunInput input) {
   const auto t0 = Clock::now();
   // Meshed in a power-of-two frame where the exact predicates and every
   // measure are safe, whatever the input's scale (docs/robustness.md).
-  const detail::Frame frame = detail::frame_for(input.pslg.points);
+  const detail::Frame frame = detail::frame_for(input.pslg.points, user_plan.threads);
   Plan plan = user_plan;
   const Pslg user_seeds = seeds_of(input.pslg);
   normalize_input(frame, plan, input);
