@@ -388,8 +388,11 @@ TEST(ParallelRefine, OptionsItCannotKeepAreSequential) {
 }
 
 // A .node file of `n` uniform points; `extra` is written before line `at`.
+// Named per process: another test_parallel running at the same time must
+// not rewrite the file while it is mapped.
 std::string write_node_file(const std::string& name, std::size_t n, std::size_t at = 0, const std::string& extra = "") {
-  const std::string path = (std::filesystem::temp_directory_path() / name).string();
+  const std::string path =
+      (std::filesystem::temp_directory_path() / (std::to_string(::getpid()) + "_" + name)).string();
   std::ofstream f(path);
   f << n << " 2 0 1\n";
   const auto pts = dm::gen::uniform_points(n, 3);
