@@ -79,7 +79,7 @@ Frame frame_for(std::span<const Point> points, unsigned threads) {
     Extent x;
     for (const Point& p : part) {
       const double ax = std::fabs(p.x), ay = std::fabs(p.y);
-      x.bad |= !(ax <= std::numeric_limits<double>::max()) | !(ay <= std::numeric_limits<double>::max());
+      x.bad |= !(ax <= std::numeric_limits<double>::max() && ay <= std::numeric_limits<double>::max());
       const double big = ax < ay ? ay : ax;
       x.m = x.m < big ? big : x.m;
       const double sx = ax > 0 ? ax : INFINITY, sy = ay > 0 ? ay : INFINITY;
