@@ -122,6 +122,11 @@ class Refiner {
     bool offcenter = false;
     TraceReason rule = TraceReason::None;  // which Steiner rule chose c (for the trace)
     std::vector<SubsegmentRef> segments;
+    // A hub wedge's far side, split at the near side's radius after the
+    // segments above (hub_wedge_side); kNone: none.
+    std::uint32_t mirror_seg = kNone;
+    VertexId mirror_apex = kNone;
+    double mirror_radius = 0;
   };
   inline void decide(TriId t, Decision& d);
   void decide_segments(TriId t, const std::vector<HalfEdgeId>& encroached, const Eval& ev, Decision& d);
@@ -221,6 +226,7 @@ class Refiner {
   bool refuse_split_near_apex(HalfEdgeId e, const Eval& ev, TriId t) const;
   void measure_apex_feature_sizes();
   bool in_small_sector(VertexId apex, const Point& g) const;
+  HalfEdgeId hub_wedge_side(const Point& c, std::uint32_t& far_seg, VertexId& apex) const;
   bool exempt_from_r1(HalfEdgeId e) const;
   void mirror_split(std::uint32_t seg, VertexId apex, double radius, int depth);
   double gap2(std::uint32_t s, std::uint32_t t, VertexId apex, double radius) const;
@@ -316,6 +322,7 @@ class Refiner {
   // squared local feature size in the input (the distance to the nearest
   // input vertex or segment not incident to it); 0 for the others.
   std::vector<double> apex_lfs2_;
+  bool has_hubs_ = false;  // some apex_lfs2_ set: hub_wedge_side() can apply
   std::size_t budget_ = kUnlimited;
   std::size_t n_input_ = 0;
   unsigned scan_threads_ = 1;
