@@ -281,6 +281,8 @@ void Refiner::split_bad_triangle() {
         if (trace_) [[unlikely]] trace_r2(q.t, TraceKind::SplitSegment, TraceReason::RejectedPoint);
         split |= split_segment(e);
       }
+      if (split && decision_.mirror_seg != kNone && budget_left())
+        mirror_split(decision_.mirror_seg, decision_.mirror_apex, decision_.mirror_radius, 1);
       // Requeue the triangle for another look, unless no split could be
       // made (then the same decision would come back forever).
       if (split && alive(q)) consider(q.t);
@@ -312,6 +314,7 @@ void Refiner::decide(TriId t, Decision& d) {
   d.reason = Reason::None;
   d.transient = false;
   d.segments.clear();
+  d.mirror_seg = kNone;
   const Eval ev = eval(t);
   if (!ev.skinny && !ev.large) return;
   if (ev.skinny && !ev.large && opt_.small_angle_protection && faces_small_angle(t, ev)) {
@@ -355,13 +358,30 @@ void Refiner::decide(TriId t, Decision& d) {
     d.reason = Reason::Precision;
     return;
   }
+  // A point that would cut a hub's wedge into an angle below the bound for
+  // good splits the apex subsegment instead (small_angle.cpp), unless the
+  // piece would be shorter than t's shortest edge (then it goes in).
+  if (ev.skinny && !ev.large && opt_.small_angle_protection && has_hubs_) {
+    std::uint32_t far_seg = kNone;
+    VertexId apex = kNone;
+    const HalfEdgeId h = hub_wedge_side(d.c, far_seg, apex);
+    if (h != kNone && splittable(h)) {
+      const Point m = segment_split_point(tv_[h], tv_[next_edge(h)]);
+      if (std::min(dist2(m, pts_[tv_[h]]), dist2(m, pts_[tv_[next_edge(h)]])) >= ev.shortest2) {
+        enc_scratch_.push_back(h);
+        d.mirror_seg = far_seg, d.mirror_apex = apex, d.mirror_radius = std::sqrt(dist2(m, pts_[apex]));
+      }
+    }
+  }
   // R2's rejection: a point that encroaches subsegments is not inserted;
   // they are split instead. One that encroaches only subsegments that may
   // not be split is inserted anyway.
   for (const BoundaryEdge& b : bnd_) {
     if (!(b.flags & kConstrained) || !encroaches(pts_[b.a], pts_[b.b], d.c)) continue;
     const HalfEdgeId e = b.inner;  // the cavity is still intact
-    if (splittable(e)) enc_scratch_.push_back(e);
+    if (splittable(e) && std::find(enc_scratch_.begin(), enc_scratch_.end(), e) == enc_scratch_.end() &&
+        (enc_scratch_.empty() || tw_[e] != enc_scratch_[0]))
+      enc_scratch_.push_back(e);
   }
   if (!enc_scratch_.empty()) {
     decide_segments(t, enc_scratch_, ev, d);

@@ -126,6 +126,11 @@ class Refiner {
     bool offcenter = false;
     TraceReason rule = TraceReason::None;  // which Steiner rule chose c (for the trace)
     std::vector<SubsegmentRef> segments;
+    // A hub wedge's far side, split at the near side's radius after the
+    // segments above (hub_wedge_side); kNone: none.
+    std::uint32_t mirror_seg = kNone;
+    VertexId mirror_apex = kNone;
+    double mirror_radius = 0;
   };
   inline void decide(TriId t, Decision& d);
   void decide_segments(TriId t, const std::vector<HalfEdgeId>& encroached, const Eval& ev, Decision& d);
@@ -230,9 +235,11 @@ class Refiner {
   bool apex_distance(HalfEdgeId e, double& d2) const;
   void note_apex_distance(VertexId v, double d2) {
     if (apex_lfs2_[v] == 0 || d2 < apex_lfs2_[v]) apex_lfs2_[v] = d2;
+    has_hubs_ = true;
   }
   void apex_feature_sizes_in_parallel();  // setup_scan.cpp
   bool in_small_sector(VertexId apex, const Point& g) const;
+  HalfEdgeId hub_wedge_side(const Point& c, std::uint32_t& far_seg, VertexId& apex) const;
   bool exempt_from_r1(HalfEdgeId e) const;
   void mirror_split(std::uint32_t seg, VertexId apex, double radius, int depth);
   double gap2(std::uint32_t s, std::uint32_t t, VertexId apex, double radius) const;
@@ -328,6 +335,7 @@ class Refiner {
   // squared local feature size in the input (the distance to the nearest
   // input vertex or segment not incident to it); 0 for the others.
   std::vector<double> apex_lfs2_;
+  bool has_hubs_ = false;  // some apex_lfs2_ set: hub_wedge_side() can apply
   std::size_t budget_ = kUnlimited;
   std::size_t n_input_ = 0;
   unsigned scan_threads_ = 1;

@@ -78,6 +78,7 @@ void Refiner::find_small_angles() {
 // triangle of the vertex's fan.
 void Refiner::measure_apex_feature_sizes() {
   apex_lfs2_.assign(n_input_, 0.0);
+  has_hubs_ = false;
   if (scan_threads_ > 1) return apex_feature_sizes_in_parallel();  // setup_scan.cpp: the same, in the same order
   double d2;
   for (HalfEdgeId e = 0; e < tv_.size(); ++e)
@@ -388,15 +389,74 @@ bool Refiner::refuse_split_near_apex(HalfEdgeId e, const Eval& ev, TriId t) cons
   if (s == kNone || !seg_small_[s]) return false;
   const Point m = segment_split_point(a, b);
   const double part = std::min(dist2(m, pts_[a]), dist2(m, pts_[b]));
-  if (part < ev.shortest2) return true;
+  const Point& p0 = pts_[tv_[3 * t]];
+  const Point& p1 = pts_[tv_[3 * t + 1]];
+  const Point& p2 = pts_[tv_[3 * t + 2]];
+  const Point g{(p0.x + p1.x + p2.x) / 3, (p0.y + p1.y + p2.y) / 3};
+  if (part < ev.shortest2)  // Shewchuk's rule, for a triangle in the small angle it protects
+    return ((seg_small_[s] & 1) && in_small_sector(segs_[s][0], g)) ||
+           ((seg_small_[s] & 2) && in_small_sector(segs_[s][1], g));
   const bool ain = a < n_input_, bin = b < n_input_;
   if (ain == bin) return false;
   const VertexId apex = ain ? a : b;
   if (!(part < kApexGuard * kApexGuard * apex_lfs2_[apex])) return false;
-  const Point& p0 = pts_[tv_[3 * t]];
-  const Point& p1 = pts_[tv_[3 * t + 1]];
-  const Point& p2 = pts_[tv_[3 * t + 2]];
-  return in_small_sector(apex, {(p0.x + p1.x + p2.x) / 3, (p0.y + p1.y + p2.y) / 3});
+  return in_small_sector(apex, g);
+}
+
+// A hub's wedge between the bound and twice the bound can keep every
+// angle at the bound only without an edge from the apex into it: any such
+// edge cuts it into two angles one of which stays below the bound forever
+// (a best point in the annulus of a 61° wedge cut it into 30.1° + 30.9°).
+// Wedges under 60° are small input angles, whose triangles the rules above
+// leave anyway: this is about wedges from 60° to twice a bound over 30°.
+// For a Steiner point c whose cavity (bnd_) reaches a hub's apex inside
+// such a wedge: the subsegment from the apex along the wedge's side nearer
+// to c in angle, which decide() splits instead (as if c encroached it),
+// and the far side (far_seg) to split at the same radius, so that the
+// apex's triangle in the wedge stays isosceles (unequal radii make it skinny,
+// and the next point cuts the wedge one shell further in). kNone when c
+// makes no such edge.
+HalfEdgeId Refiner::hub_wedge_side(const Point& c, std::uint32_t& far_seg, VertexId& apex) const {
+  constexpr double kTwoPi = 2 * std::numbers::pi;
+  for (const BoundaryEdge& b : bnd_) {
+    const VertexId v = b.a;
+    if (v >= n_input_ || !(apex_lfs2_[v] > 0)) continue;  // hubs only (measure_apex_feature_sizes)
+    const Point& A = pts_[v];
+    const double dc = std::atan2(c.y - A.y, c.x - A.x);
+    double ccw = INFINITY, cw = INFINITY;
+    std::uint32_t s_ccw = kNone, s_cw = kNone;
+    for (std::uint32_t i = adj_start_[v]; i < adj_start_[v + 1]; ++i) {
+      const Point& O = pts_[adj_[i].first];
+      double d = std::atan2(O.y - A.y, O.x - A.x) - dc;
+      while (d < 0) d += kTwoPi;
+      while (d >= kTwoPi) d -= kTwoPi;
+      if (d < ccw) ccw = d, s_ccw = adj_[i].second;
+      if (kTwoPi - d < cw) cw = kTwoPi - d, s_cw = adj_[i].second;
+    }
+    const double wedge = ccw + cw;
+    if (!(wedge >= std::max(bound_rad_, std::numbers::pi / 3) && wedge < 2 * bound_rad_)) continue;
+    const std::uint32_t s = ccw < cw ? s_ccw : s_cw;
+    far_seg = ccw < cw ? s_cw : s_ccw;
+    apex = v;
+    const VertexId other = segs_[s][0] == v ? segs_[s][1] : segs_[s][0];
+    HalfEdgeId side = kNone;
+    m_.for_each_out_edge(v, [&](HalfEdgeId h) {
+      const VertexId w = tv_[next_edge(h)];
+      if ((fl_[h] & kConstrained) && (w == other || (w >= n_input_ && seg_of_[w] == s))) {
+        side = h;
+        return false;
+      }
+      const HalfEdgeId p = prev_edge(h);
+      const VertexId x = tv_[p];
+      if ((fl_[p] & kConstrained) && (x == other || (x >= n_input_ && seg_of_[x] == s))) {
+        side = p;
+        return false;
+      }
+      return true;
+    });
+    if (side != kNone) return side;
+  }
+  return kNone;
 }
 
 // Whether g lies in an input angle under 60° at `apex`: between two
