@@ -12,6 +12,7 @@
 #include <string>
 
 #include "algo/cdt_builder.hpp"
+#include "algo/normalize.hpp"
 #include "deltamesh/delaunay.hpp"
 #include "deltamesh/errors.hpp"
 #include "deltamesh/predicates.hpp"
@@ -534,6 +535,11 @@ Mesh constrained_triangulation(const Pslg& pslg, const CdtOptions& options, CdtS
     st = CdtStats{};  // over budget: start over the classic way
     st.chain_order_abandoned = true;
   }
+  // Beyond the predicates' range a VertexError, as on the chain-order path
+  // (triangulate() then meshes in a frame): delaunay() would frame the points
+  // on its own and leave segments and holes to coordinates the predicates
+  // cannot handle (subnormal ones underflow: a "degenerate" triangle).
+  if (!detail::in_predicate_range(pslg.points, 1)) check_coordinates(pslg.points);
   DelaunayStats ds;
   DelaunayOptions dopt;
   dopt.keep_ghosts = true;
