@@ -371,3 +371,27 @@ TEST(Regress, AdaptSteinerBudgetCoversTheRefinementAfterSmoothing) {
   EXPECT_EQ(st.inserted, st.refine.steiner_points);
   EXPECT_FALSE(st.complete) << st.summary();
 }
+
+TEST(Regress, SubnormalInputWithAHoleMeshesInAFrame) {
+  // Exposed (fuzz_adapt): three points with subnormal coordinates, two
+  // segments and a hole point. constrained_triangulation()'s classic path
+  // let delaunay() frame the points on its own and then located the hole in
+  // the subnormal coordinates: InternalError "visibility_walk: point
+  // location met a degenerate triangle". And check() ran the predicates on
+  // the subnormal triangle (products underflow): "not counter-clockwise".
+  const dm::Pslg g = dm::read_poly(regress("cdt_subnormal_points_hole_point_walk.poly"));
+  for (const dm::CdtMethod method : {dm::CdtMethod::Fast, dm::CdtMethod::Lawson, dm::CdtMethod::Lifting})
+    for (const bool hull : {false, true}) {
+      SCOPED_TRACE(std::string(dm::to_string(method)) + (hull ? " hull" : ""));
+      dm::TriangulateOptions topt;
+      topt.method = method;
+      topt.domain.keep_convex_hull = hull;
+      const dm::Mesh m = dm::triangulate(g, topt);
+      const dm::CheckReport rep = dm::check(m, {.convex_hull = false});
+      EXPECT_TRUE(rep.ok()) << rep.summary();
+      // No segment closes a region: only the hull keeps the triangle, with
+      // the input's coordinates bit for bit.
+      EXPECT_EQ(m.num_triangles(), hull ? 1u : 0u);
+      for (dm::VertexId v = 0; v < 3 && hull; ++v) EXPECT_EQ(m.point(v), g.points[v]);
+    }
+}

@@ -8,6 +8,8 @@
 #include <sstream>
 #include <unordered_map>
 
+#include "algo/normalize.hpp"
+#include "deltamesh/errors.hpp"
 #include "deltamesh/predicates.hpp"
 #include "mesh/edge_rules.hpp"
 #include "validate_overlap.hpp"
@@ -455,6 +457,26 @@ class Checker {
 CheckReport check(const Mesh& mesh, const CheckOptions& options) {
   CheckReport report;
   report.delaunay_checked = options.delaunay;
+  if (detail::needs_frame(mesh.points())) {
+    // Beyond the predicates' range (subnormal coordinates underflow: a
+    // counter-clockwise triangle would look flat): the same checks on an
+    // exact power-of-two copy, as triangulate() meshes it. Ids are unchanged;
+    // coordinates in problem texts are the frame's.
+    const detail::Frame f = detail::frame_for(mesh.points());
+    Mesh framed = mesh;
+    Pslg pslg;
+    CheckOptions o = options;
+    try {
+      detail::scale_mesh(f, framed);
+      if (options.pslg) pslg = detail::scaled_pslg(f, *options.pslg);
+    } catch (const InputError&) {  // a spread no frame holds: checked as it is
+      Checker(mesh, options, report).run();
+      return report;
+    }
+    if (options.pslg) o.pslg = &pslg;
+    Checker(framed, o, report).run();
+    return report;
+  }
   Checker(mesh, options, report).run();
   return report;
 }
