@@ -106,7 +106,8 @@ struct CdtStats {
 // segments are ignored and counted.
 // Throws InputError for a segment endpoint out of range, for input the
 // Delaunay step rejects (non-finite, fewer than 3 distinct or all collinear
-// points), and if the number of added vertices exceeds the number of segment
+// points), VertexError for a nonzero coordinate beyond the predicates'
+// range 2^+-200 (triangulate() meshes such input in a frame), and if the number of added vertices exceeds the number of segment
 // pairs (it cannot on valid input: the guard against endless loops).
 Mesh constrained_triangulation(const Pslg& pslg, const CdtOptions& options = {}, CdtStats* stats = nullptr);
 
