@@ -35,8 +35,23 @@ void Refiner::scan_edges_in_parallel() {
   std::vector<std::vector<std::pair<std::array<VertexId, 2>, std::uint8_t>>> found(chunks);
   std::vector<std::vector<HalfEdgeId>> constrained(chunks);
   if (fl_.size() < ne) fl_.resize(ne, 0);  // a mesh without flags yet (set_edge_flags() makes them)
+  // Out-edges in the same pass: a boundary vertex's last boundary out-edge,
+  // else a vertex's first out-edge, as the sequential loop leaves them. A
+  // compare-and-swap to the largest by that order (boundary ones above the
+  // others, the larger of two boundary ones, the smaller of two others):
+  // the same result in any interleaving.
+  std::fill(ve_.begin(), ve_.end(), kNone);
   for_chunks(ne, scan_threads_, [&](std::size_t i, std::size_t lo, std::size_t hi) {
     for (std::size_t e = lo; e < hi; ++e) {
+      if (tw_[e] == kNone) {
+        detail::atomic_replace_while(ve_[tv_[e]], static_cast<HalfEdgeId>(e), [&, e](HalfEdgeId cur) {
+          return cur == kNone || tw_[cur] != kNone || cur < e;
+        });
+      } else {
+        detail::atomic_replace_while(ve_[tv_[e]], static_cast<HalfEdgeId>(e), [&, e](HalfEdgeId cur) {
+          return cur == kNone || (cur > e && tw_[cur] != kNone);
+        });
+      }
       if (tw_[e] == kNone && !(fl_[e] & kConstrained)) fl_[e] = static_cast<std::uint8_t>(fl_[e] | kConstrained);
       if (!(fl_[e] & kConstrained)) continue;
       constrained[i].push_back(static_cast<HalfEdgeId>(e));
@@ -58,25 +73,6 @@ void Refiner::scan_edges_in_parallel() {
       ++adj_start_[s[0] + 1];
       ++adj_start_[s[1] + 1];
     }
-  // Out-edges: a boundary vertex's last boundary out-edge, else a vertex's
-  // first out-edge, as the sequential loop leaves them. One pass of
-  // compare-and-swap to the largest by that order (boundary ones above the
-  // others, the larger of two boundary ones, the smaller of two others):
-  // the same result in any interleaving.
-  std::fill(ve_.begin(), ve_.end(), kNone);
-  for_chunks(ne, scan_threads_, [&](std::size_t, std::size_t lo, std::size_t hi) {
-    for (std::size_t e = lo; e < hi; ++e) {
-      if (tw_[e] == kNone) {
-        detail::atomic_replace_while(ve_[tv_[e]], static_cast<HalfEdgeId>(e), [&, e](HalfEdgeId cur) {
-          return cur == kNone || tw_[cur] != kNone || cur < e;
-        });
-      } else {
-        detail::atomic_replace_while(ve_[tv_[e]], static_cast<HalfEdgeId>(e), [&, e](HalfEdgeId cur) {
-          return cur == kNone || (cur > e && tw_[cur] != kNone);
-        });
-      }
-    }
-  });
 }
 
 // The sectors of find_small_angles(), measured concurrently, in half-edge order.
