@@ -198,7 +198,7 @@ Mesh stitch(const Mesh& whole, std::vector<Part>& parts, unsigned threads, std::
   first_look.assign(looks ? nt : 0, 0);
   std::vector<std::vector<HalfEdgeId>> open(parts.size());
   run_tasks(parts.size(), threads, [&](std::size_t j) {
-    const Mesh& m = parts[j].mesh;
+    Mesh& m = parts[j].mesh;
     const std::vector<VertexId>& global = parts[j].global;
     auto id = [&](VertexId v) {
       return v < global.size() ? global[v] : static_cast<VertexId>(vbase[j] + (v - global.size()));
@@ -212,22 +212,39 @@ Mesh stitch(const Mesh& whole, std::vector<Part>& parts, unsigned threads, std::
           out.vertex_attributes()[std::size_t{g} * na + k] = m.vertex_attributes()[std::size_t{v} * na + k];
     }
     const std::size_t base = 3 * tbase[j], slots = tbase[j + 1] - tbase[j];
+    // Raw pointers and hoisted bounds: through the vectors' references the
+    // compiler reloaded every one after each store (a third of this pass).
+    const VertexId first_new = static_cast<VertexId>(global.size());
+    const VertexId shift = static_cast<VertexId>(vbase[j] - global.size());
+    const VertexId* to_global = global.data();
+    VertexId* out_v = tv.data() + base;
+    HalfEdgeId* out_w = tw.data() + base;
+    std::vector<HalfEdgeId>& open_j = open[j];
     if (j == 0 && in_place) {
       for (HalfEdgeId e = 0; e < 3 * slots; ++e) {
-        tv[e] = id(tv[e]);
-        if (tw[e] == kNone) open[0].push_back(e);
+        const VertexId v = out_v[e];
+        out_v[e] = v < first_new ? to_global[v] : v + shift;
+        if (out_w[e] == kNone) open_j.push_back(e);
       }
-    }
-    for (HalfEdgeId e = 0; e < 3 * slots && !(j == 0 && in_place); ++e) {
-      tv[base + e] = id(m.origin(e));
-      fl[base + e] = m.edge_flags(e);
-      if (edge_markers) mk[base + e] = m.edge_marker(e);
-      if (m.twin(e) == kNone) {
-        tw[base + e] = kNone;
-        open[j].push_back(static_cast<HalfEdgeId>(base + e));
-      } else {
-        tw[base + e] = static_cast<HalfEdgeId>(base + m.twin(e));
+    } else {
+      const VertexId* in_v = MeshEditor(m).triangle_vertices().data();
+      const HalfEdgeId* in_w = MeshEditor(m).twins().data();
+      const auto b = static_cast<HalfEdgeId>(base);
+      for (HalfEdgeId e = 0; e < 3 * slots; ++e) {
+        const VertexId v = in_v[e];
+        out_v[e] = v < first_new ? to_global[v] : v + shift;
+        if (in_w[e] == kNone) {
+          out_w[e] = kNone;
+          open_j.push_back(b + e);
+        } else {
+          out_w[e] = b + in_w[e];
+        }
       }
+      // (flags and markers: empty arrays read as zeros)
+      if (MeshEditor(m).edge_flags().size() >= 3 * slots)
+        std::copy_n(MeshEditor(m).edge_flags().data(), 3 * slots, fl.data() + base);
+      if (edge_markers && MeshEditor(m).edge_markers().size() >= 3 * slots)
+        std::copy_n(MeshEditor(m).edge_markers().data(), 3 * slots, mk.data() + base);
     }
     for (std::size_t k = 0; k < slots * ta; ++k)
       out.triangle_attributes()[tbase[j] * ta + k] = m.triangle_attributes()[k];

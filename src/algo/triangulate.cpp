@@ -124,6 +124,12 @@ void carry_vertex_data(Mesh& mesh, const Pslg& pslg, bool use_segments) {
 std::size_t count_constrained_edges(const Mesh& mesh) {
   std::size_t count = 0;
   if (!mesh.has_edge_flags()) return 0;
+  if (mesh.compacted()) {  // every slot real, every twin real or none: one scan of the flags
+    const std::size_t ne = 3 * std::size_t{mesh.num_triangle_slots()};
+    for (HalfEdgeId e = 0; e < ne; ++e)
+      if (mesh.edge_flags(e) & kConstrained) count += mesh.twin(e) == kNone || e < mesh.twin(e);
+    return count;
+  }
   for (TriId t : mesh.triangles()) {
     for (HalfEdgeId e = 3 * t; e < 3 * t + 3; ++e) {
       if (!mesh.is_constrained(e)) continue;

@@ -351,6 +351,7 @@ class Refiner {
   std::vector<std::uint8_t> seg_spike_;
   bool has_spikes_ = false;
   std::vector<std::uint32_t> adj_start_;     // CSR over input vertices
+  std::vector<HalfEdgeId> constrained_;      // the constrained half-edges at setup, in order (setup_scan.cpp)
   std::vector<std::pair<VertexId, std::uint32_t>> adj_;  // (other endpoint, segment)
   std::vector<std::uint32_t> seg_of_;        // per Steiner vertex on a segment: its segment
   // Per segment end (2 s + 0/1): the segments bounding a small domain angle

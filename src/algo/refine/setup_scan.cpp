@@ -33,31 +33,15 @@ void for_chunks(std::size_t n, unsigned threads, F&& f) {
 void Refiner::scan_edges_in_parallel() {
   const std::size_t ne = tv_.size(), chunks = chunk_count(scan_threads_);
   std::vector<std::vector<std::pair<std::array<VertexId, 2>, std::uint8_t>>> found(chunks);
+  std::vector<std::vector<HalfEdgeId>> constrained(chunks);
   if (fl_.size() < ne) fl_.resize(ne, 0);  // a mesh without flags yet (set_edge_flags() makes them)
-  for_chunks(ne, scan_threads_, [&](std::size_t i, std::size_t lo, std::size_t hi) {
-    for (std::size_t e = lo; e < hi; ++e) {
-      if (tw_[e] == kNone && !(fl_[e] & kConstrained)) fl_[e] = static_cast<std::uint8_t>(fl_[e] | kConstrained);
-      if (!(fl_[e] & kConstrained) || (tw_[e] != kNone && tw_[e] < e)) continue;
-      found[i].push_back({{tv_[e], tv_[next_edge(static_cast<HalfEdgeId>(e))]},
-                          static_cast<std::uint8_t>(tw_[e] == kNone ? kBoundarySeg : 0)});
-    }
-  });
-  has_markers_ = m_.has_edge_markers();
-  adj_start_.assign(n_input_ + 1, 0);
-  for (const auto& list : found)
-    for (const auto& [s, spike] : list) {
-      segs_.push_back(s);
-      seg_spike_.push_back(spike);
-      ++adj_start_[s[0] + 1];
-      ++adj_start_[s[1] + 1];
-    }
-  // Out-edges: a boundary vertex's last boundary out-edge, else a vertex's
-  // first out-edge, as the sequential loop leaves them. One pass of
+  // Out-edges in the same pass: a boundary vertex's last boundary out-edge,
+  // else a vertex's first out-edge, as the sequential loop leaves them. A
   // compare-and-swap to the largest by that order (boundary ones above the
   // others, the larger of two boundary ones, the smaller of two others):
   // the same result in any interleaving.
   std::fill(ve_.begin(), ve_.end(), kNone);
-  for_chunks(ne, scan_threads_, [&](std::size_t, std::size_t lo, std::size_t hi) {
+  for_chunks(ne, scan_threads_, [&](std::size_t i, std::size_t lo, std::size_t hi) {
     for (std::size_t e = lo; e < hi; ++e) {
       if (tw_[e] == kNone) {
         detail::atomic_replace_while(ve_[tv_[e]], static_cast<HalfEdgeId>(e), [&, e](HalfEdgeId cur) {
@@ -68,18 +52,36 @@ void Refiner::scan_edges_in_parallel() {
           return cur == kNone || (cur > e && tw_[cur] != kNone);
         });
       }
+      if (tw_[e] == kNone && !(fl_[e] & kConstrained)) fl_[e] = static_cast<std::uint8_t>(fl_[e] | kConstrained);
+      if (!(fl_[e] & kConstrained)) continue;
+      constrained[i].push_back(static_cast<HalfEdgeId>(e));
+      if (tw_[e] != kNone && tw_[e] < e) continue;
+      found[i].push_back({{tv_[e], tv_[next_edge(static_cast<HalfEdgeId>(e))]},
+                          static_cast<std::uint8_t>(tw_[e] == kNone ? kBoundarySeg : 0)});
     }
   });
+  has_markers_ = m_.has_edge_markers();
+  // The later passes of setup() look only at constrained half-edges (few:
+  // the segments), and none becomes or stops being one before they run.
+  constrained_.clear();
+  for (const auto& list : constrained) constrained_.insert(constrained_.end(), list.begin(), list.end());
+  adj_start_.assign(n_input_ + 1, 0);
+  for (const auto& list : found)
+    for (const auto& [s, spike] : list) {
+      segs_.push_back(s);
+      seg_spike_.push_back(spike);
+      ++adj_start_[s[0] + 1];
+      ++adj_start_[s[1] + 1];
+    }
 }
 
 // The sectors of find_small_angles(), measured concurrently, in half-edge order.
 void Refiner::sectors_in_parallel(std::vector<Sector>& out) const {
-  const std::size_t ne = tv_.size(), chunks = chunk_count(scan_threads_);
+  const std::size_t chunks = chunk_count(scan_threads_);
   std::vector<std::vector<Sector>> found(chunks);
-  for_chunks(ne, scan_threads_, [&](std::size_t i, std::size_t lo, std::size_t hi) {
-    for (std::size_t e = lo; e < hi; ++e) {
-      if (!(fl_[e] & kConstrained)) continue;  // most are not: no call
-      Sector s{static_cast<HalfEdgeId>(e), kNone, 0};
+  for_chunks(constrained_.size(), scan_threads_, [&](std::size_t i, std::size_t lo, std::size_t hi) {
+    for (std::size_t k = lo; k < hi; ++k) {  // (sector_at() is false for the others)
+      Sector s{constrained_[k], kNone, 0};
       if (sector_at(s)) found[i].push_back(s);
     }
   });
@@ -91,19 +93,27 @@ void Refiner::sectors_in_parallel(std::vector<Sector>& out) const {
 void Refiner::queue_encroached_in_parallel() {
   const std::size_t chunks = chunk_count(scan_threads_);
   std::vector<std::vector<SubsegmentRef>> found(chunks);
-  for_chunks(tv_.size(), scan_threads_, [&](std::size_t i, std::size_t lo, std::size_t hi) {
+  // The constrained half-edges listed at setup, while the list holds (run()'s
+  // call); go_beyond()'s, after refinement, scans every half-edge.
+  const bool listed = !constrained_.empty();
+  for_chunks(listed ? constrained_.size() : tv_.size(), scan_threads_, [&](std::size_t i, std::size_t lo, std::size_t hi) {
     for (std::size_t k = lo; k < hi; ++k) {
-      const auto e = static_cast<HalfEdgeId>(k);
+      const HalfEdgeId e = listed ? constrained_[k] : static_cast<HalfEdgeId>(k);
       if ((fl_[e] & kConstrained) && (tw_[e] == kNone || tw_[e] > e) && encroached(e) && splittable(e))
         found[i].push_back({tv_[e], tv_[next_edge(e)], e});
     }
   });
   for (const auto& list : found) encroached_.insert(encroached_.end(), list.begin(), list.end());
+  constrained_ = {};  // refinement changes the mesh from here on
 }
 
 // measure_apex_feature_sizes()' distances, found concurrently, noted in
 // half-edge order.
 void Refiner::apex_feature_sizes_in_parallel() {
+  // A hub has three segments or more: without one among their ends, the
+  // scan below would note nothing.
+  if (std::none_of(segs_.begin(), segs_.end(), [&](const auto& s) { return shelled_hub(s[0]) || shelled_hub(s[1]); }))
+    return;
   const std::size_t chunks = chunk_count(scan_threads_);
   std::vector<std::vector<std::pair<VertexId, double>>> found(chunks);
   for_chunks(tv_.size(), scan_threads_, [&](std::size_t i, std::size_t lo, std::size_t hi) {
