@@ -51,4 +51,27 @@ TEST(SpatialSort, OrderIsAPermutationAndSortedCopyFollowsIt) {
   for (std::size_t k = 0; k < order.size(); ++k) ASSERT_EQ(sorted[k], pts[order[k]]);
 }
 
+TEST(SpatialSort, SubsetReadInPlaceOrdersAsItsCopy) {
+  // The slabs of the parallel build sort their points through their input
+  // indices; the order must be the one of the same points copied out.
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> u(-5.0, 5.0);
+  std::vector<Point> pts(60000);
+  for (Point& p : pts) p = {u(rng), u(rng)};
+  std::vector<VertexId> subset;
+  std::vector<Point> copy;
+  for (VertexId i = 0; i < pts.size(); ++i)
+    if (pts[i].x < 1.0 && i % 3 != 0) {
+      subset.push_back(i);
+      copy.push_back(pts[i]);
+    }
+  std::vector<Point> sorted_copy, sorted_subset;
+  const std::vector<VertexId> want = detail::hilbert_order(copy, &sorted_copy);
+  const std::vector<VertexId> got = detail::hilbert_order(pts, subset, &sorted_subset);
+  ASSERT_GT(got.size(), 20000u);
+  EXPECT_EQ(got, want);
+  EXPECT_EQ(sorted_subset, sorted_copy);
+  for (std::size_t k = 0; k < got.size(); ++k) ASSERT_EQ(sorted_subset[k], pts[subset[got[k]]]);
+}
+
 }  // namespace

@@ -149,14 +149,16 @@ namespace detail {
 InsertionOrderDelaunay delaunay_in_insertion_order(std::span<const Point> points, TraceObserver* trace,
                                                    DelaunayStats* stats, std::chrono::steady_clock::time_point& t0,
                                                    std::size_t reserve_triangles, std::size_t reserve_points,
-                                                   const std::function<void()>& after_sort, bool count) {
-  const std::size_t n = points.size();
+                                                   const std::function<void()>& after_sort, bool count,
+                                                   std::span<const VertexId> subset) {
+  const std::size_t n = subset.empty() ? points.size() : subset.size();
   InsertionOrderDelaunay out;
   // Build on a copy in insertion order, so the walk touches nearby memory.
   Mesh& mesh = out.mesh;
   mesh.set_trace(trace);
   MeshEditor(mesh).points().reserve(std::max(n, reserve_points));
-  out.order = hilbert_order(points, &MeshEditor(mesh).points());
+  out.order = subset.empty() ? hilbert_order(points, &MeshEditor(mesh).points())
+                             : hilbert_order(points, subset, &MeshEditor(mesh).points());
   if (after_sort) after_sort();  // `points` is not read again
   if (trace) {  // vertices in insertion order until the caller renumbers them
     TraceAccess::phase(*trace, "delaunay");

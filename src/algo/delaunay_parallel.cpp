@@ -106,7 +106,6 @@ class RawArray {
 struct Slab {
   double lo = 0, hi = 0;       // lo <= x < hi
   RawArray<VertexId> ids;      // its points' input indices, increasing (freed once mapped)
-  RawArray<Point> pts;         // those points (freed once sorted)
   Mesh mesh;                   // closed (ghosts), in the slab's insertion order
   std::vector<VertexId> gid;   // slab vertex -> input index (of the first copy, for duplicates)
   std::size_t duplicates = 0;
@@ -124,16 +123,18 @@ struct Slab {
 // Triangulates and classifies one slab, all in the slab's insertion
 // (BRIO/Hilbert) order: its triangles and their points are near each other
 // in memory there, while input numbering would scatter every point access.
-void triangulate_slab(std::size_t n, Slab& s, bool first) {
+void triangulate_slab(std::span<const Point> points, Slab& s, bool first) {
+  const std::size_t n = points.size();
   const VertexId* ids = s.ids.data();  // slab vertex (input order) -> input index
   InsertionOrderDelaunay built;
   try {
     auto t0 = Clock::now();
     // The first slab's arrays also take the other slabs' triangles later.
     // (Its triangles, by Euler's bound, and its hole; all the points.)
-    const std::size_t k = s.pts.size();
-    built = delaunay_in_insertion_order(s.pts.span(), nullptr, nullptr, t0, first ? 2 * n + 2 + 2 * k + 2 : 0,
-                                        first ? n : 0, [&s] { s.pts.release(); }, false);
+    // Its points are read in place through `ids` (no copy of them).
+    const std::size_t k = s.ids.size();
+    built = delaunay_in_insertion_order(points, nullptr, nullptr, t0, first ? 2 * n + 2 + 2 * k + 2 : 0,
+                                        first ? n : 0, {}, false, s.ids.span());
   } catch (const InputError&) {
     s.failed = true;
     return;
@@ -249,7 +250,7 @@ void write_out_edges(Slab& s, HalfEdgeId* ve) {
   s.in_gap = std::vector<std::uint8_t>{};
 }
 
-// Each slab's points (input order, with their input indices), from one
+// Each slab's points (their input indices, increasing), from one
 // partition pass in parallel chunks: counted per chunk and slab, then
 // scattered, instead of every slab scanning all the points.
 void partition_points(std::span<const Point> points, const std::vector<double>& cuts, std::vector<Slab>& slabs,
@@ -271,14 +272,12 @@ void partition_points(std::span<const Point> points, const std::vector<double>& 
     std::size_t total = 0;
     for (std::size_t c = 0; c < chunks; ++c) total += std::exchange(at[c * parts + j], total);
     slabs[j].ids.allocate(total);
-    slabs[j].pts.allocate(total);
   }
   run_tasks(chunks, threads, [&](std::size_t c) {
     std::vector<std::size_t> pos(at.begin() + c * parts, at.begin() + (c + 1) * parts);
     for (std::size_t i = begin(c); i < begin(c + 1); ++i) {
       const std::size_t j = slab_of(points[i].x), k = pos[j]++;
       slabs[j].ids.data()[k] = static_cast<VertexId>(i);
-      slabs[j].pts.data()[k] = points[i];
     }
   });
 }
@@ -321,7 +320,7 @@ std::optional<Mesh> parallel_delaunay(std::span<const Point> points, unsigned pa
   // The first slab's triangle arrays become the result's (sized for all of
   // it, by Euler's bound): no copy of that slab and no second allocation.
   partition_points(points, cuts, slabs, threads);
-  run_tasks(slabs.size(), threads, [&](std::size_t j) { triangulate_slab(n, slabs[j], j == 0); });
+  run_tasks(slabs.size(), threads, [&](std::size_t j) { triangulate_slab(points, slabs[j], j == 0); });
   for (const Slab& s : slabs)
     if (s.failed) return std::nullopt;
   if (stats) stats->sort_seconds = seconds_since(t0);

@@ -97,13 +97,18 @@ std::uint32_t hilbert_index_11(std::uint32_t x, std::uint32_t y) {
   }
   return d;
 }
-std::vector<VertexId> hilbert_order(std::span<const Point> points, std::vector<Point>* sorted) {
-  const std::size_t n = points.size();
+namespace {
+
+// The order for n points, point i being at(i): the input itself, or a
+// subset read through its indices (no copy of the subset's points).
+template <class At>
+std::vector<VertexId> hilbert_order_of(std::size_t n, const At& at, std::vector<Point>* sorted) {
   std::vector<VertexId> order(n);
   if (sorted) sorted->resize(n);
   if (n == 0) return order;
-  double minx = points[0].x, maxx = minx, miny = points[0].y, maxy = miny;
-  for (const Point& p : points) {
+  double minx = at(0).x, maxx = minx, miny = at(0).y, maxy = miny;
+  for (std::size_t i = 0; i < n; ++i) {
+    const Point& p = at(i);
     minx = std::min(minx, p.x);
     maxx = std::max(maxx, p.x);
     miny = std::min(miny, p.y);
@@ -138,8 +143,9 @@ std::vector<VertexId> hilbert_order(std::span<const Point> points, std::vector<P
   std::unique_ptr<std::uint64_t[]> keys(new std::uint64_t[n]), tmp(new std::uint64_t[n]);
   std::vector<std::size_t> low(kBuckets + 1, 0), high(kBuckets + 1, 0);
   for (std::size_t i = 0; i < n; ++i) {
-    const auto qx = static_cast<std::uint32_t>(std::clamp((points[i].x - minx) * scale, 0.0, kCells));
-    const auto qy = static_cast<std::uint32_t>(std::clamp((points[i].y - miny) * scale, 0.0, kCells));
+    const Point& p = at(i);
+    const auto qx = static_cast<std::uint32_t>(std::clamp((p.x - minx) * scale, 0.0, kCells));
+    const auto qy = static_cast<std::uint32_t>(std::clamp((p.y - miny) * scale, 0.0, kCells));
     static_assert(kLevels == 11);
     const std::uint32_t k = (round_of(i) << (2 * kLevels)) | hilbert_index_11(qx, qy);
     keys[i] = (std::uint64_t{k} << 32) | i;
@@ -155,8 +161,20 @@ std::vector<VertexId> hilbert_order(std::span<const Point> points, std::vector<P
   tmp.reset();
   for (std::size_t k = 0; k < n; ++k) order[k] = static_cast<VertexId>(keys[k]);
   if (sorted)
-    for (std::size_t k = 0; k < n; ++k) (*sorted)[k] = points[order[k]];
+    for (std::size_t k = 0; k < n; ++k) (*sorted)[k] = at(order[k]);
   return order;
+}
+
+}  // namespace
+
+std::vector<VertexId> hilbert_order(std::span<const Point> points, std::vector<Point>* sorted) {
+  return hilbert_order_of(points.size(), [points](std::size_t i) -> const Point& { return points[i]; }, sorted);
+}
+
+std::vector<VertexId> hilbert_order(std::span<const Point> points, std::span<const VertexId> subset,
+                                    std::vector<Point>* sorted) {
+  return hilbert_order_of(
+      subset.size(), [points, subset](std::size_t i) -> const Point& { return points[subset[i]]; }, sorted);
 }
 
 }  // namespace deltamesh::detail

@@ -21,5 +21,9 @@ std::uint32_t hilbert_index_11(std::uint32_t x, std::uint32_t y);
 // cell (2^22 cells) keep input order. When `sorted` is given it receives the
 // points in that order.
 std::vector<VertexId> hilbert_order(std::span<const Point> points, std::vector<Point>* sorted = nullptr);
+// The same for the subset points[subset[0]], points[subset[1]], ..., read in
+// place: order[k] is an index into `subset`.
+std::vector<VertexId> hilbert_order(std::span<const Point> points, std::span<const VertexId> subset,
+                                    std::vector<Point>* sorted = nullptr);
 
 }  // namespace deltamesh::detail
