@@ -162,6 +162,22 @@ TEST(Metric, NonMetricsAreRejectedWithTheReason) {
   EXPECT_THROW(dm::adapt_to_metric(m, bad), dm::InputError);
 }
 
+// A domain so small that the complexity's factor overflows (fuzz_adapt
+// found one 3e-29 wide): the metrics stay finite, clamped to h_min.
+TEST(Metric, ScalingATinyDomainGivesFiniteMetrics) {
+  const dm::Mesh m = dm::delaunay(std::vector<dm::Point>{{0, 0}, {1e-150, 0}, {0, 1e-150}, {1e-150, 1e-150}});
+  ASSERT_EQ(m.num_triangles(), 2u);
+  const std::vector<dm::Metric> h(m.num_vertices(), dm::Metric{1, 0, 1});
+  dm::MetricScaling sc;
+  sc.complexity = 1e10;
+  const std::vector<dm::Metric> met = dm::metric_from_hessian(m, h, sc);
+  ASSERT_EQ(met.size(), m.num_vertices());
+  for (const dm::Metric& x : met) {
+    EXPECT_TRUE(dm::is_metric(x));
+    EXPECT_NEAR(x.m11, 1 / (sc.h_min * sc.h_min), 1e-6 / (sc.h_min * sc.h_min));
+  }
+}
+
 TEST(Metric, HessianRecoveryIsExactForQuadratics) {
   dm::Mesh m = mesh_of(two_regions(), 0.002);
   std::vector<double> u(m.num_vertices());

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <string>
 
 #include "algo/adapt/common.hpp"
@@ -170,7 +171,15 @@ std::vector<Metric> metric_from_hessian(const Mesh& mesh, std::span<const Metric
   const auto bounded = [&](double global) {
     std::vector<Metric> out(n);
     for (std::size_t i = 0; i < n; ++i) {
-      const Eigen2 e = eigen(adaptation::scaled(m[i], global));
+      Eigen2 e = eigen(adaptation::scaled(m[i], global));
+      if (!std::isfinite(e.l1) || !std::isfinite(e.l2)) {
+        // A tiny domain asks for a factor whose product overflows: scale the
+        // eigenvalues instead (an infinite one is clamped to h_min's).
+        e = eigen(m[i]);
+        const double g = std::min(global, std::numeric_limits<double>::max());
+        e.l1 *= g;
+        e.l2 *= g;
+      }
       double l2 = std::clamp(e.l2, lmin, lmax);
       double l1 = std::clamp(e.l1, lmin, lmax);
       l1 = std::max(l1, l2 / (sc.max_aspect * sc.max_aspect));
