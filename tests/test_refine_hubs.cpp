@@ -424,17 +424,23 @@ TEST(HubsLimit, BunchesWithSpreadLengths) {
 // (issue 20): 138 spokes in pairs 2^-50..2^-20 rad wide, lengths spread over
 // 2^-10..1 at scale 2^35. Their tips are a few ulps apart, so some triangles
 // stay at the precision of doubles: incomplete, but not by a budget.
-TEST(HubsLimit, BunchTipsAtThePrecisionOfDoubles) {
-  const dm::Pslg input =
-      dm::read_poly(DELTAMESH_SOURCE_DIR "/tests/regress/refine_hub_bunch_tips_at_precision.poly");
+// A fuzz_hubs input from tests/regress refined to `angle` under the
+// fuzzer's budget for work bounded by the feature size; the mesh validated.
+dm::RefineStats refine_fuzz_hub(const std::string& name, double angle, double seconds) {
+  const dm::Pslg input = dm::read_poly(DELTAMESH_SOURCE_DIR "/tests/regress/" + name);
   dm::Mesh mesh = dm::triangulate(input);
   dm::RefineOptions o;
-  o.min_angle_deg = 20;
-  o.max_steiner = 200 * mesh.num_vertices() + 20000;  // fuzz_hubs' budget for work bounded by the feature size
-  o.time_limit_seconds = 20;
+  o.min_angle_deg = angle;
+  o.max_steiner = 200 * mesh.num_vertices() + 20000;
+  o.time_limit_seconds = seconds;
   const dm::RefineStats st = dm::refine(mesh, o);
-  SCOPED_TRACE(st.summary());
   dm::test::expect_valid(mesh, false);
+  return st;
+}
+
+TEST(HubsLimit, BunchTipsAtThePrecisionOfDoubles) {
+  const dm::RefineStats st = refine_fuzz_hub("refine_hub_bunch_tips_at_precision.poly", 20, 20);
+  SCOPED_TRACE(st.summary());
   EXPECT_FALSE(st.budget_exhausted);
   EXPECT_FALSE(st.time_exhausted);
   EXPECT_EQ(st.too_large, 0u);
@@ -449,15 +455,8 @@ TEST(HubsLimit, BunchTipsAtThePrecisionOfDoubles) {
 // and Shewchuk's rule in its sector the work is no longer bounded and stops
 // at fuzz_hubs' budget (39,200). Disabled until the rules are fixed.
 TEST(HubsLimit, DISABLED_TwoBunchesAtQ33StayWithinBoundedWork) {
-  const dm::Pslg input = dm::read_poly(DELTAMESH_SOURCE_DIR "/tests/regress/refine_hub_bunch_cascade_q33.poly");
-  dm::Mesh mesh = dm::triangulate(input);
-  dm::RefineOptions o;
-  o.min_angle_deg = 33;
-  o.max_steiner = 200 * mesh.num_vertices() + 20000;  // fuzz_hubs' budget for work bounded by the feature size
-  o.time_limit_seconds = 60;
-  const dm::RefineStats st = dm::refine(mesh, o);
+  const dm::RefineStats st = refine_fuzz_hub("refine_hub_bunch_cascade_q33.poly", 33, 60);
   SCOPED_TRACE(st.summary());
-  dm::test::expect_valid(mesh, false);
   EXPECT_FALSE(st.budget_exhausted);
   EXPECT_EQ(st.below_bound, st.below_small_input_angle + st.below_precision);
 }
