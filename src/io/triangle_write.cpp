@@ -28,6 +28,14 @@ namespace {
 
 using io::OutBuffer;
 
+// Item `item`'s `na` attributes; missing ones (a short array) as 0.
+void put_attributes(OutBuffer& out, const std::vector<double>& attrs, std::size_t item, std::size_t na) {
+  for (std::size_t k = 0; k < na; ++k) {
+    const std::size_t i = item * na + k;
+    out.field_double(i < attrs.size() ? attrs[i] : 0.0);
+  }
+}
+
 // The footer every Triangle file ends with, then the file renamed onto its
 // target.
 void finish(OutBuffer& out) {
@@ -81,10 +89,7 @@ void write_node(const Mesh& mesh, const std::string& path, const TriangleWriteOp
     const Point& p = mesh.point(static_cast<VertexId>(v));
     out.raw_field_double(p.x);
     out.raw_field_double(p.y);
-    for (std::size_t k = 0; k < na; ++k) {
-      const std::size_t i = v * na + k;
-      out.field_double(i < attrs.size() ? attrs[i] : 0.0);
-    }
+    put_attributes(out, attrs, v, na);
     if (opt.write_markers) out.field_int(vertex_output_marker(mesh, static_cast<VertexId>(v), on_boundary));
     out.put('\n');
   }
@@ -114,10 +119,7 @@ void write_ele(const Mesh& mesh, const std::string& path, const TriangleWriteOpt
     for (const VertexId v : mesh.triangle(t)) out.raw_field_int(static_cast<long long>(v) + first);
     if (six)
       for (int k = 0; k < 3; ++k) out.raw_field_int(static_cast<long long>(opt.midside[3 * std::size_t{t} + k]) + first);
-    for (std::size_t k = 0; k < na; ++k) {
-      const std::size_t i = std::size_t{t} * na + k;
-      out.field_double(i < attrs.size() ? attrs[i] : 0.0);
-    }
+    put_attributes(out, attrs, t, na);
     out.put('\n');
   }
   finish(out);
