@@ -96,6 +96,7 @@ int quadrature_k = 4;
 bool trace = false;
 bool bands = false;
 bool exact_hessian = false;
+std::string dump_path;
 
 Error interpolation_error(const dm::Mesh& m, const Function& fn) {
   const std::vector<double> u = values(m, fn);
@@ -188,6 +189,35 @@ void print_bands(const dm::Mesh& m, const Function& fn, const dm::MetricField& f
       len[band] += dm::edge_length_in_metrics(p, q, field(p.x, p.y), field(q.x, q.y)) / 3;
     }
   }
+  {
+    // Finer distance bands (vertical distance, in units of 0.004).
+    double fe[13] = {}, fn_[13] = {};
+    for (dm::TriId t = 0; t < m.num_triangle_slots(); ++t) {
+      if (!m.is_real(t)) continue;
+      const auto v = m.triangle(t);
+      const dm::Point &a = m.point(v[0]), &b = m.point(v[1]), &c = m.point(v[2]);
+      const dm::Point g{(a.x + b.x + c.x) / 3, (a.y + b.y + c.y) / 3};
+      const double area = 0.5 * std::fabs((b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x));
+      double sq = 0;
+      for (int i = 0; i < k; ++i)
+        for (int j = 0; i + j < k; ++j)
+          for (int up = 0; up < (i + j < k - 1 ? 2 : 1); ++up) {
+            const double s = (i + (up ? 2.0 / 3 : 1.0 / 3)) / k, r = (j + (up ? 2.0 / 3 : 1.0 / 3)) / k;
+            const double x = a.x + s * (b.x - a.x) + r * (c.x - a.x), y = a.y + s * (b.y - a.y) + r * (c.y - a.y);
+            const double d = fn.f(x, y) - ((1 - s - r) * u[v[0]] + s * u[v[1]] + r * u[v[2]]);
+            sq += d * d;
+          }
+      sq *= area / (k * k);
+      const int bi = std::min(12, int(std::fabs(g.y - 0.5 - 0.25 * std::sin(2 * M_PI * g.x)) / 0.004));
+      fe[bi] += sq;
+      fn_[bi] += 1;
+    }
+    double tot = 0;
+    for (double x : fe) tot += x;
+    std::fprintf(stderr, "  fine bands (0.004):");
+    for (int i = 0; i < 13; ++i) std::fprintf(stderr, " %d/%.1f", int(fn_[i]), 100 * fe[i] / tot);
+    std::fprintf(stderr, "\n");
+  }
   std::fprintf(stderr, "  triangles / %% of squared error by x decile, bands < 0.02 | 0.02-0.05 | beyond:\n");
   for (int i = 0; i < 10; ++i) {
     std::fprintf(stderr, "   x %.1f:", i / 10.0);
@@ -254,7 +284,17 @@ std::vector<dm::Metric> metric_for(const dm::Mesh& m, const Function& fn, bool a
   sc.max_aspect = 1e4;
   std::vector<dm::Metric> met = dm::metric_from_hessian(m, h, sc);
   const double c0 = complexity(m, met);
+  const std::vector<dm::Metric> ungraded = met;
   dm::gradate_metric(m, met, gradation);
+  if (!dump_path.empty()) {
+    std::ofstream d(dump_path);
+    d.precision(9);
+    d << "x,y,h11,h12,h22,m11,m12,m22,g11,g12,g22\n";
+    for (dm::VertexId v = 0; v < m.num_vertices(); ++v)
+      d << m.point(v).x << "," << m.point(v).y << "," << h[v].m11 << "," << h[v].m12 << "," << h[v].m22 << ","
+        << ungraded[v].m11 << "," << ungraded[v].m12 << "," << ungraded[v].m22 << "," << met[v].m11 << ","
+        << met[v].m12 << "," << met[v].m22 << "\n";
+  }
   if (trace) std::fprintf(stderr, "  complexity %.1f -> graded %.1f\n", c0, complexity(m, met));
   return met;
 }
@@ -375,6 +415,7 @@ int main(int argc, char** argv) {
     else if (a == "--trace") trace = v == "1";
     else if (a == "--hessian") exact_hessian = v == "exact";
     else if (a == "--bands") bands = v == "1";
+    else if (a == "--dump") dump_path = v;
     else {
       std::fprintf(stderr, "bench_aniso: unknown option %s\n", a.c_str());
       return 2;
@@ -397,7 +438,7 @@ int main(int argc, char** argv) {
           bg = m;
           const dm::MetricField field = dm::metric_field_from_vertices(m, met);
           const auto t0 = std::chrono::steady_clock::now();
-          dm::adapt_to_metric(m, field);
+          const dm::MetricAdaptStats ast = dm::adapt_to_metric(m, field);
           seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
           validate(m, fn.name + " " + method + " N=" + std::to_string(int(n)) + " iteration " + std::to_string(it));
           fit = dm::metric_fit(m, field);
@@ -417,8 +458,8 @@ int main(int argc, char** argv) {
             for (int h : hist) std::fprintf(stderr, " %d", h);
             std::fprintf(stderr, "\n");
             const Error ie = interpolation_error(m, fn);
-            std::fprintf(stderr, "%s %s N=%d it %d: %zu triangles, l2 %.4g, within %.3f\n", fn.name.c_str(), method,
-                         int(n), it, m.num_triangles(), ie.l2, fit.within);
+            std::fprintf(stderr, "%s %s N=%d it %d: %zu triangles, l2 %.4g, within %.3f; adapt_to_metric: %s\n",
+                         fn.name.c_str(), method, int(n), it, m.num_triangles(), ie.l2, fit.within, ast.summary().c_str());
           }
         }
         if (bands && fn.name == "front") {

@@ -8,6 +8,8 @@
 #include <cstdio>
 #include <cstdlib>
 #include <string>
+#include <unordered_map>
+#include <utility>
 
 #include "algo/adapt/common.hpp"
 #include "algo/adapt/metric_math.hpp"
@@ -122,9 +124,26 @@ class MetricAdapter {
     ++live_vertices_;
   }
 
-  double length(VertexId a, VertexId b) const { return edge_length_in_metrics(pt(a), pt(b), met_[a], met_[b]); }
-  double length_at(const Point& p, const Metric& mp, VertexId b) const {
-    return edge_length_in_metrics(p, pt(b), mp, met_[b]);
+  // The metric length of ab by Simpson's rule, with the field at the
+  // midpoint: the length the split at that midpoint will see. The
+  // endpoints alone (edge_length_in_metrics) miss how the field varies
+  // between them: across a graded layer, splits made halves that the
+  // collapse pass took back, pass after pass, until the iteration limit.
+  double length(VertexId a, VertexId b) {
+    const Point &p = pt(a), &q = pt(b);
+    const double dx = q.x - p.x, dy = q.y - p.y;
+    const Point mp{0.5 * (p.x + q.x), 0.5 * (p.y + q.y)};
+    return (metric_length(met_[a], dx, dy) + 4 * metric_length(midpoint_metric(a, b, mp), dx, dy) +
+            metric_length(met_[b], dx, dy)) /
+           6;
+  }
+  // The field at an edge's midpoint, cached per vertex pair (valid while
+  // the midpoint stays: smoothing moves vertices, ids are never reused).
+  const Metric& midpoint_metric(VertexId a, VertexId b, const Point& mp) {
+    const std::uint64_t key = std::uint64_t(std::min(a, b)) << 32 | std::max(a, b);
+    auto [it, fresh] = mid_.try_emplace(key, mp, Metric{});
+    if (fresh || it->second.first.x != mp.x || it->second.first.y != mp.y) it->second = {mp, eval(mp)};
+    return it->second.second;
   }
   Metric tri_metric(const Metric& la, const Metric& lb, const Metric& lc) const {
     return adaptation::exp_sym(adaptation::mean3(la, lb, lc));
@@ -185,7 +204,7 @@ class MetricAdapter {
     double length;
     VertexId a, b;
   };
-  std::vector<Candidate> candidates(bool longest) const {
+  std::vector<Candidate> candidates(bool longest) {
     std::vector<Candidate> c;
     for (HalfEdgeId e = 0; e < m_.triangle_vertices().size(); ++e) {
       if (!m_.is_real(tri_of(e))) continue;
@@ -475,6 +494,7 @@ class MetricAdapter {
   const MetricAdaptOptions& opt_;
   MetricAdaptStats& st_;
   std::vector<Metric> met_, lg_;
+  std::unordered_map<std::uint64_t, std::pair<Point, Metric>> mid_;
   std::vector<std::uint8_t> pinned_;
   std::vector<std::uint32_t> mark_;
   std::uint32_t stamp_ = 0;
