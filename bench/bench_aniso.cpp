@@ -11,20 +11,24 @@
 //
 //   bench_aniso [--functions front,layer,cross] [--n 250,500,...] [--methods iso,aniso] [--iterations 5]
 //               [--svg DIR] [--svg-n N] [--gmsh DIR] [--gradation BETA] [--quadrature K]
-//               [--trace 1] [--hessian exact] [--bands 1]
+//               [--trace 1] [--hessian exact] [--bands 1] [--dump FILE]
 //
 // --svg: pictures of the meshes at N = --svg-n (default 2000). --gradation:
 // gradate_metric's beta for both methods (default 2). --quadrature: K x K
 // sub-triangles per triangle for the error (default 4; the L2 error agrees
 // to 6 digits with K = 16 on the front at N = 250). Diagnostics: --trace 1
 // prints, per iteration, the metric's complexity before and after
-// gradation and the mesh's error on stderr; --hessian exact replaces the
+// gradation, the mesh's error and adapt_to_metric's summary on stderr;
+// --hessian exact replaces the
 // recovered Hessian by central differences of the function itself;
 // --bands 1 (front only) prints, for the last mesh, triangles and squared
 // error by distance of the centroid to the front's centre line (< 0.02,
 // 0.02-0.05, beyond) and x decile, and per band the triangles against the
 // metric's own count (area in the metric over that of a unit equilateral
-// triangle) and the mean metric edge length.
+// triangle) and the mean metric edge length, and triangles and error share
+// in bands of 0.004; --dump FILE writes, for the last metric computed (the
+// last run's last iteration), each vertex's recovered Hessian and metric
+// before and after gradation (CSV).
 //
 // Output: CSV on stdout, one row per (function, method, N) after the last
 // iteration; every mesh of every iteration goes through check().
