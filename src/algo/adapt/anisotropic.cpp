@@ -141,9 +141,10 @@ class MetricAdapter {
   // the midpoint stays: smoothing moves vertices, ids are never reused).
   const Metric& midpoint_metric(VertexId a, VertexId b, const Point& mp) {
     const std::uint64_t key = std::uint64_t(std::min(a, b)) << 32 | std::max(a, b);
-    auto [it, fresh] = mid_.try_emplace(key, mp, Metric{});
-    if (fresh || it->second.first.x != mp.x || it->second.first.y != mp.y) it->second = {mp, eval(mp)};
-    return it->second.second;
+    const auto it = mid_.find(key);
+    if (it != mid_.end() && it->second.first.x == mp.x && it->second.first.y == mp.y) return it->second.second;
+    const Metric m = eval(mp);  // may throw: nothing is cached then
+    return (mid_[key] = {mp, m}).second;
   }
   Metric tri_metric(const Metric& la, const Metric& lb, const Metric& lc) const {
     return adaptation::exp_sym(adaptation::mean3(la, lb, lc));
