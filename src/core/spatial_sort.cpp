@@ -103,8 +103,8 @@ namespace {
 // subset read through its indices (no copy of the subset's points).
 template <class At>
 std::vector<VertexId> hilbert_order_of(std::size_t n, const At& at, std::vector<Point>* sorted) {
-  std::vector<VertexId> order(n);
-  if (sorted) sorted->resize(n);
+  std::vector<VertexId> order;
+  if (sorted) sorted->clear();
   if (n == 0) return order;
   double minx = at(0).x, maxx = minx, miny = at(0).y, maxy = miny;
   for (std::size_t i = 0; i < n; ++i) {
@@ -159,9 +159,14 @@ std::vector<VertexId> hilbert_order_of(std::size_t n, const At& at, std::vector<
   for (std::size_t i = 0; i < n; ++i) tmp[low[(keys[i] >> 32) & (kBuckets - 1)]++] = keys[i];
   for (std::size_t i = 0; i < n; ++i) keys[high[tmp[i] >> (32 + kBits)]++] = tmp[i];
   tmp.reset();
-  for (std::size_t k = 0; k < n; ++k) order[k] = static_cast<VertexId>(keys[k]);
-  if (sorted)
-    for (std::size_t k = 0; k < n; ++k) (*sorted)[k] = at(order[k]);
+  // Appended, not resized first: a resize would zero-fill (and fault in)
+  // the order and the points only for these loops to overwrite them.
+  order.reserve(n);
+  for (std::size_t k = 0; k < n; ++k) order.push_back(static_cast<VertexId>(keys[k]));
+  if (sorted) {
+    sorted->reserve(n);
+    for (std::size_t k = 0; k < n; ++k) sorted->push_back(at(order[k]));
+  }
   return order;
 }
 
