@@ -215,13 +215,10 @@ void triangulate_slab(std::span<const Point> points, Slab& s, bool first) {
 
 // Writes a slab's kept triangles (slab arrays sv, sw) into the result at
 // triangle `first`, notes their vertices' out-edges (s.last) and the seams'
-// half-edges; then frees the slab's mesh (on this thread, in parallel).
-// put(h, v, w) stores result half-edge h = (vertex v, twin w); h increases
-// by one each call, so a put may append. The first slab is moved in place
-// (sv == the result, first == 0): a kept triangle only moves to a lower
-// slot, after it is read.
-template <class Put>
-void copy_slab(Slab& s, std::size_t first, const VertexId* sv, const HalfEdgeId* sw, const Put& put) {
+// half-edges; then frees the slab's mesh (on this thread, in parallel). The
+// first slab is moved in place (sv == tv, first == 0): a kept triangle only
+// moves to a lower slot, after it is read.
+void copy_slab(Slab& s, std::size_t first, const VertexId* sv, const HalfEdgeId* sw, VertexId* tv, HalfEdgeId* tw) {
   const std::size_t base = 3 * first;
   // The last out-edge in slot order, as Mesh::compact() picks it: noted per
   // slab vertex (near in memory, in insertion order), then written once per
@@ -234,9 +231,10 @@ void copy_slab(Slab& s, std::size_t first, const VertexId* sv, const HalfEdgeId*
     for (int i = 0; i < 3; ++i) {
       const HalfEdgeId e = 3 * t + i, o = sw[e];
       const VertexId v = sv[e];
+      tv[f + i] = s.gid[v];
       last[v] = static_cast<HalfEdgeId>(f + i);
       const TriId u = s.rank[tri_of(o)];
-      put(f + i, s.gid[v], u == kNone ? kNone : static_cast<HalfEdgeId>(base + 3 * std::size_t{u} + o % 3));
+      tw[f + i] = u == kNone ? kNone : static_cast<HalfEdgeId>(base + 3 * std::size_t{u} + o % 3);
     }
   }
   for (HalfEdgeId e : s.seams) s.open.push_back(static_cast<HalfEdgeId>(base + 3 * std::size_t{s.rank[tri_of(e)]} + e % 3));
@@ -429,19 +427,11 @@ std::optional<Mesh> parallel_delaunay(std::span<const Point> points, unsigned pa
   // task 0 the points and out-edges, then it compacts the first slab in
   // place (below its old size); task 1 grows the triangle arrays within
   // their capacity (their data does not move), then copies its slab and
-  // fills the duplicate map. With two slabs task 1 appends its slab
-  // instead, each value written once (no zero-fill first), and the gap's
-  // slots are added after the tasks. Tasks are taken in index order, so a
-  // task that waits for these two waits for tasks already running. A flag
-  // is set on every exit; `fill_failed` says the fill threw (run_tasks
-  // rethrows it).
+  // fills the duplicate map. Tasks are taken in index order, so a task that
+  // waits for these two waits for tasks already running. A flag is set on
+  // every exit; `fill_failed` says the fill threw (run_tasks rethrows it).
   VertexId* const tvp = tv.data();
   HalfEdgeId* const twp = tw.data();
-  const auto put_at = [tvp, twp](std::size_t h, VertexId v, HalfEdgeId w) {
-    tvp[h] = v;
-    twp[h] = w;
-  };
-  const bool append = slabs.size() == 2 && tv.size() == 3 * first_slots;
   std::atomic<bool> grown{false}, filled{false}, fill_failed{false};
   struct Raise {
     std::atomic<bool>& flag;
@@ -466,40 +456,26 @@ std::optional<Mesh> parallel_delaunay(std::span<const Point> points, unsigned pa
           throw;
         }
       }
-      copy_slab(s, 0, tvp, twp, put_at);
+      copy_slab(s, 0, tvp, twp, tvp, twp);
     } else {
-      const VertexId* const sv = s.mesh.triangle_vertices().data();
-      const HalfEdgeId* const sw = MeshEditor(s.mesh).twins().data();
-      if (append) {  // within the capacity: tvp and twp stay valid
-        copy_slab(s, offset[j], sv, sw, [&tv, &tw](std::size_t, VertexId v, HalfEdgeId w) {
-          tv.push_back(v);
-          tw.push_back(w);
-        });
-      } else {
-        if (j == 1) {
-          const Raise done{grown};
-          try {
-            tv.resize(3 * end);
-            tw.resize(3 * end);
-          } catch (...) {
-            fill_failed.store(true, std::memory_order_release);
-            throw;
-          }
-        } else if (!wait(grown)) {
-          return;
+      if (j == 1) {
+        const Raise done{grown};
+        try {
+          tv.resize(3 * end);
+          tw.resize(3 * end);
+        } catch (...) {
+          fill_failed.store(true, std::memory_order_release);
+          throw;
         }
-        copy_slab(s, offset[j], sv, sw, put_at);
+      } else if (!wait(grown)) {
+        return;
       }
+      copy_slab(s, offset[j], s.mesh.triangle_vertices().data(), MeshEditor(s.mesh).twins().data(), tvp, twp);
       // After the copy has freed this slab's mesh: no higher peak of memory.
       if (j == 1 && stats) stats->duplicate_of.assign(n, kNone);
     }
     if (wait(filled)) write_out_edges(s, ve.data());
   });
-  if (append) {  // the gap's slots
-    if (tv.size() != 3 * offset.back()) throw InternalError("parallel_delaunay", "a slab was not appended whole");
-    tv.resize(3 * end);
-    tw.resize(3 * end);
-  }
   // Half-edges left without a twin: seams, the gap's edges along them, and
   // the hull; paired by their vertices. The gap's vertices get their
   // out-edges here: from the seams, then from the gap's triangles.
