@@ -12,12 +12,12 @@
 #include <charconv>
 
 #include <cmath>
-#include <cstdint>
 #include <cstring>
 #include <limits>
 #include <system_error>
 
 #include "core/parallel.hpp"
+#include "core/prefault.hpp"
 #include "core/float_chars.hpp"
 
 namespace deltamesh::io {
@@ -269,22 +269,6 @@ TextReader::~TextReader() {
   if (mapping_.address != nullptr) ::munmap(mapping_.address, mapping_.length);
 }
 
-namespace {
-
-// Maps the whole pages of [p, p + bytes) writable now (Linux 5.14 and
-// later; elsewhere, or on failure, nothing happens). The contents do not
-// change: it only moves the page faults of a later write to this thread.
-void prefault_for_write([[maybe_unused]] void* p, [[maybe_unused]] std::size_t bytes) {
-#ifdef MADV_POPULATE_WRITE
-  const auto page = static_cast<std::uintptr_t>(::sysconf(_SC_PAGESIZE));
-  const auto a = reinterpret_cast<std::uintptr_t>(p);
-  const std::uintptr_t b = (a + page - 1) / page * page, e = (a + bytes) / page * page;
-  if (e > b) (void)::madvise(reinterpret_cast<void*>(b), e - b, MADV_POPULATE_WRITE);
-#endif
-}
-
-}  // namespace
-
 TextReader TextReader::open(const std::string& path) {
   struct stat st {};
   Fd fd(open_for_reading(path, st));
@@ -484,8 +468,8 @@ bool TextReader::try_point_lines(long long first_id, std::size_t count, bool wit
     if (j > 0) {  // its lines' likely place among the count, with a margin
       const std::size_t from = count * (q.begin - pos_) / total, to = count * (q.end - pos_) / total;
       const std::size_t lo = from - std::min(from, count / 64), hi = std::min(count, to + count / 64);
-      if (points_at) prefault_for_write(points_at + lo, (hi - lo) * sizeof(Point));
-      if (markers_at) prefault_for_write(markers_at + lo, (hi - lo) * sizeof(int));
+      if (points_at) detail::prefault_for_write(points_at + lo, (hi - lo) * sizeof(Point));
+      if (markers_at) detail::prefault_for_write(markers_at + lo, (hi - lo) * sizeof(int));
     }
   });
   // Joined in order: each piece must go on from where the previous one
