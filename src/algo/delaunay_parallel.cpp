@@ -433,6 +433,7 @@ std::optional<Mesh> parallel_delaunay(std::span<const Point> points, unsigned pa
   // every exit; `fill_failed` says the fill threw (run_tasks rethrows it).
   VertexId* const tvp = tv.data();
   HalfEdgeId* const twp = tw.data();
+  const bool grows = 3 * end > tv.size();  // (read here: task 1 resizes)
   std::atomic<bool> grown{false}, filled{false}, fill_failed{false};
   struct Raise {
     std::atomic<bool>& flag;
@@ -448,7 +449,7 @@ std::optional<Mesh> parallel_delaunay(std::span<const Point> points, unsigned pa
       // The second half of what task 1's growth will zero-fill: its page
       // faults taken here (nothing is written), so that the two tasks share
       // them; task 1 also has the other slab's copy to fault in.
-      if (3 * end > tv.size() && slabs.size() >= 2) {
+      if (grows) {
         const std::size_t from = 3 * first_slots, half = from + (3 * end - from) / 2;
         // (The twins first: task 1 grows the vertices first.)
         prefault_for_write(twp + half, (3 * end - half) * sizeof(HalfEdgeId));
