@@ -122,6 +122,21 @@ TEST(ParallelDelaunay, DuplicatesAsSequential) {
   EXPECT_EQ(triangle_set(par), triangle_set(seq));
 }
 
+TEST(ParallelDelaunay, SlabsWhoseFirstPointsAreCollinear) {
+  // Nearly all points on one line: in every slab the first point off the
+  // line comes late in the insertion order, so the first triangle's corners
+  // have high numbers (a slab keeps out-edges only up to them).
+  std::vector<dm::Point> pts = dm::gen::uniform_points(20000, 13);
+  for (std::size_t i = 0; i < pts.size(); ++i)
+    if (i % 400 != 0) pts[i].y = 0.5;
+  const dm::Mesh seq = sequential(pts);
+  for (unsigned parts : {2u, 3u}) {
+    const dm::Mesh par = slabs(pts, parts, 2);
+    expect_valid_delaunay(par, std::to_string(parts) + " slabs");
+    EXPECT_EQ(par.num_triangles(), seq.num_triangles()) << parts << " slabs";
+  }
+}
+
 TEST(ParallelDelaunay, SlabsWithoutTriangleFallBack) {
   // Two vertical lines of points: a slab of one line has no triangle.
   std::vector<dm::Point> pts;

@@ -149,7 +149,7 @@ namespace detail {
 InsertionOrderDelaunay delaunay_in_insertion_order(std::span<const Point> points, TraceObserver* trace,
                                                    DelaunayStats* stats, std::chrono::steady_clock::time_point& t0,
                                                    std::size_t reserve_triangles, std::size_t reserve_points,
-                                                   const std::function<void()>& after_sort, bool count,
+                                                   const std::function<void()>& after_sort, bool finish,
                                                    std::span<const VertexId> subset) {
   const std::size_t n = subset.empty() ? points.size() : subset.size();
   InsertionOrderDelaunay out;
@@ -165,7 +165,7 @@ InsertionOrderDelaunay delaunay_in_insertion_order(std::span<const Point> points
     TraceAccess::points(*trace, 0, mesh.points());
   }
 
-  MeshEditor(mesh).out_edges().assign(n, kNone);
+  if (finish) MeshEditor(mesh).out_edges().assign(n, kNone);
   if (stats) stats->sort_seconds = seconds_since(t0);
   t0 = Clock::now();
 
@@ -183,6 +183,9 @@ InsertionOrderDelaunay delaunay_in_insertion_order(std::span<const Point> points
     throw InputError("no triangle can be made: all " + std::to_string(n) + " points are collinear");
   }
   mesh.reserve(n, std::max(2 * n + 2, reserve_triangles));
+  // Unfinished (a slab): out-edges only for the first triangle's corners,
+  // which it sets; the n-entry fill would be freed unread.
+  if (!finish) MeshEditor(mesh).out_edges().assign(std::max(i1, i2) + 1, kNone);
   if (orient2d(pts[0], pts[i1], pts[i2]) > 0)
     make_first_triangle(mesh, 0, static_cast<VertexId>(i1), static_cast<VertexId>(i2));
   else
@@ -200,7 +203,7 @@ InsertionOrderDelaunay delaunay_in_insertion_order(std::span<const Point> points
       if (got != v) out.dups.emplace_back(v, got);
     }
   }
-  if (count) MeshEditor(mesh).recount();
+  if (finish) MeshEditor(mesh).recount();
   return out;
 }
 

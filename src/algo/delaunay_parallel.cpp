@@ -32,6 +32,7 @@
 #include <vector>
 
 #include "core/parallel.hpp"
+#include "core/prefault.hpp"
 #include "mesh/editor.hpp"
 #include "deltamesh/cdt.hpp"
 #include "deltamesh/errors.hpp"
@@ -432,6 +433,7 @@ std::optional<Mesh> parallel_delaunay(std::span<const Point> points, unsigned pa
   // every exit; `fill_failed` says the fill threw (run_tasks rethrows it).
   VertexId* const tvp = tv.data();
   HalfEdgeId* const twp = tw.data();
+  const bool grows = 3 * end > tv.size();  // (read here: task 1 resizes)
   std::atomic<bool> grown{false}, filled{false}, fill_failed{false};
   struct Raise {
     std::atomic<bool>& flag;
@@ -444,6 +446,15 @@ std::optional<Mesh> parallel_delaunay(std::span<const Point> points, unsigned pa
   run_tasks(slabs.size(), threads, [&](std::size_t j) {
     Slab& s = slabs[j];
     if (j == 0) {
+      // The second half of what task 1's growth will zero-fill: its page
+      // faults taken here (nothing is written), so that the two tasks share
+      // them; task 1 also has the other slab's copy to fault in.
+      if (grows) {
+        const std::size_t from = 3 * first_slots, half = from + (3 * end - from) / 2;
+        // (The twins first: task 1 grows the vertices first.)
+        prefault_for_write(twp + half, (3 * end - half) * sizeof(HalfEdgeId));
+        prefault_for_write(tvp + half, (3 * end - half) * sizeof(VertexId));
+      }
       {
         const Raise done{filled};
         try {

@@ -19,8 +19,8 @@ namespace deltamesh::detail {
 // The triangle arrays get capacity for `reserve_triangles`, the points for
 // `reserve_points` (untouched pages until used). `after_sort`, when given,
 // is called once the points are sorted (`points` is not read again: it may
-// free them). `count` false leaves mesh.num_triangles() unset (a scan of
-// every slot that the slabs never read). `subset`, when not empty, says the
+// free them). `finish` false leaves mesh.num_triangles() (a scan of every
+// slot) and the vertices' out-edges unset: the slabs read neither. `subset`, when not empty, says the
 // points are points[subset[0]], points[subset[1]], ... (read in place, not
 // copied); `order` then indexes `subset`.
 struct InsertionOrderDelaunay {
@@ -31,7 +31,7 @@ struct InsertionOrderDelaunay {
 InsertionOrderDelaunay delaunay_in_insertion_order(std::span<const Point> points, TraceObserver* trace,
                                                    DelaunayStats* stats, std::chrono::steady_clock::time_point& t0,
                                                    std::size_t reserve_triangles = 0, std::size_t reserve_points = 0,
-                                                   const std::function<void()>& after_sort = {}, bool count = true,
+                                                   const std::function<void()>& after_sort = {}, bool finish = true,
                                                    std::span<const VertexId> subset = {});
 
 // Points below this per part are not worth a thread: delaunay() stays

@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <compare>
+#include <cstddef>
+#include <iterator>
 #include <memory>
 
 namespace deltamesh::detail {
@@ -99,12 +102,57 @@ std::uint32_t hilbert_index_11(std::uint32_t x, std::uint32_t y) {
 }
 namespace {
 
+// at(order[0]), at(order[1]), ... as a random-access range, so that a
+// vector is filled from it in one copy (no zero-fill, no per-element
+// capacity check).
+template <class At>
+class Gather {
+ public:
+  using iterator_category = std::random_access_iterator_tag;
+  using value_type = Point;
+  using difference_type = std::ptrdiff_t;
+  using pointer = const Point*;
+  using reference = const Point&;
+
+  Gather(const At* at, const VertexId* k) : at_(at), k_(k) {}
+  reference operator*() const { return (*at_)(*k_); }
+  reference operator[](difference_type i) const { return (*at_)(k_[i]); }
+  Gather& operator++() {
+    ++k_;
+    return *this;
+  }
+  Gather operator++(int) { return Gather(at_, k_++); }
+  Gather& operator--() {
+    --k_;
+    return *this;
+  }
+  Gather operator--(int) { return Gather(at_, k_--); }
+  Gather& operator+=(difference_type d) {
+    k_ += d;
+    return *this;
+  }
+  Gather& operator-=(difference_type d) {
+    k_ -= d;
+    return *this;
+  }
+  Gather operator+(difference_type d) const { return Gather(at_, k_ + d); }
+  friend Gather operator+(difference_type d, const Gather& g) { return g + d; }
+  Gather operator-(difference_type d) const { return Gather(at_, k_ - d); }
+  difference_type operator-(const Gather& o) const { return k_ - o.k_; }
+  bool operator==(const Gather& o) const { return k_ == o.k_; }
+  auto operator<=>(const Gather& o) const { return k_ <=> o.k_; }
+
+ private:
+  const At* at_;
+  const VertexId* k_;
+};
+
 // The order for n points, point i being at(i): the input itself, or a
 // subset read through its indices (no copy of the subset's points).
 template <class At>
 std::vector<VertexId> hilbert_order_of(std::size_t n, const At& at, std::vector<Point>* sorted) {
-  std::vector<VertexId> order(n);
-  if (sorted) sorted->resize(n);
+  std::vector<VertexId> order;
+  if (sorted) sorted->clear();
   if (n == 0) return order;
   double minx = at(0).x, maxx = minx, miny = at(0).y, maxy = miny;
   for (std::size_t i = 0; i < n; ++i) {
@@ -159,9 +207,11 @@ std::vector<VertexId> hilbert_order_of(std::size_t n, const At& at, std::vector<
   for (std::size_t i = 0; i < n; ++i) tmp[low[(keys[i] >> 32) & (kBuckets - 1)]++] = keys[i];
   for (std::size_t i = 0; i < n; ++i) keys[high[tmp[i] >> (32 + kBits)]++] = tmp[i];
   tmp.reset();
-  for (std::size_t k = 0; k < n; ++k) order[k] = static_cast<VertexId>(keys[k]);
-  if (sorted)
-    for (std::size_t k = 0; k < n; ++k) (*sorted)[k] = at(order[k]);
+  // Copied in, not resized first: a resize would zero-fill (and fault in)
+  // the order and the points only for these copies to overwrite them. The
+  // order is each key's low 32 bits (the index).
+  order.assign(keys.get(), keys.get() + n);
+  if (sorted) sorted->assign(Gather<At>(&at, order.data()), Gather<At>(&at, order.data() + n));
   return order;
 }
 

@@ -17,6 +17,7 @@
 #include <system_error>
 
 #include "core/parallel.hpp"
+#include "core/prefault.hpp"
 #include "core/float_chars.hpp"
 
 namespace deltamesh::io {
@@ -435,6 +436,13 @@ bool TextReader::try_point_lines(long long first_id, std::size_t count, bool wit
     part[j].begin = b;
   }
   for (std::size_t j = 0; j < pieces; ++j) part[j].end = j + 1 < pieces ? part[j + 1].begin : text_.size();
+  // Where the pieces after the first will be copied at the join (serial):
+  // their pages of the reserved capacity are faulted in beforehand, each by
+  // its piece's thread (see prefault_for_write). Taken before the first
+  // piece appends; only when the reserve holds every line (no reallocation).
+  Point* const points_at = points.capacity() >= points_before + count ? points.data() + points_before : nullptr;
+  int* const markers_at =
+      with_marker && markers.capacity() >= markers_before + count ? markers.data() + markers_before : nullptr;
   detail::run_tasks(pieces, threads, [&](std::size_t j) {
     Piece& q = part[j];
     if (q.begin >= q.end) return;
@@ -457,6 +465,12 @@ bool TextReader::try_point_lines(long long first_id, std::size_t count, bool wit
       ++q.parsed;
     }
     q.stop = r.pos_;
+    if (j > 0) {  // its lines' likely place among the count, with a margin
+      const std::size_t from = count * (q.begin - pos_) / total, to = count * (q.end - pos_) / total;
+      const std::size_t lo = from - std::min(from, count / 64), hi = std::min(count, to + count / 64);
+      if (points_at) detail::prefault_for_write(points_at + lo, (hi - lo) * sizeof(Point));
+      if (markers_at) detail::prefault_for_write(markers_at + lo, (hi - lo) * sizeof(int));
+    }
   });
   // Joined in order: each piece must go on from where the previous one
   // ended, and the lines wanted must all have been point lines.
