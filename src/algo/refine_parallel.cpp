@@ -9,6 +9,7 @@
 #include "algo/refine_parallel.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
@@ -49,7 +50,7 @@ double domain_area(const Mesh& m) {
 // their vertices, and the temporary segments become ordinary edges again.
 // Every vertex gets its out-edge from a part (the cut vertices' may be an
 // inner edge of the whole, at its boundary: the strip turns them), and
-// `bad` lists the slots a part left bad.
+// `bad` lists the slots a part left bad, and those of segments along a cut.
 Mesh stitch(const Mesh& whole, std::vector<Part>& parts, unsigned threads, std::vector<HalfEdgeId>& cut_edges,
            std::vector<std::uint8_t>& first_look, std::vector<TriId>& bad) {
   const std::size_t n0 = whole.num_vertices(), na = whole.num_vertex_attributes(),
@@ -107,15 +108,31 @@ Mesh stitch(const Mesh& whole, std::vector<Part>& parts, unsigned threads, std::
   if (edge_markers) mk.reserve(room);
   MeshEditor(out).points().reserve(nv + nv / 16);
   MeshEditor(out).out_edges().reserve(nv + nv / 16);
-  tv.resize(3 * nt);
-  tw.resize(3 * nt);
-  fl.resize(3 * nt, 0);
-  if (edge_markers) mk.resize(3 * nt, 0);
+  // The arrays grow to the whole mesh (std::vector zero-fills what it
+  // grows, and the copies overwrite all of it): in place, on the second
+  // part's thread, within the room reserved above, while the first part's
+  // task rewrites only its own slots; later parts wait for it.
+  auto grow = [&] {
+    tv.resize(3 * nt);
+    tw.resize(3 * nt);
+    fl.resize(3 * nt, 0);
+    if (edge_markers) mk.resize(3 * nt, 0);
+  };
+  const bool grow_in_task = in_place && parts.size() > 1;
+  if (!grow_in_task) grow();
+  std::atomic<bool> grown{!grow_in_task};
   std::vector<double> area_bounds(bounds ? nt : 0, -1.0);
   first_look.assign(looks ? nt : 0, 0);
   std::vector<std::vector<HalfEdgeId>> open(parts.size());
   std::vector<std::vector<TriId>> bad_in(parts.size());
   run_tasks(parts.size(), threads, [&](std::size_t j) {
+    if (grow_in_task && j == 1) {
+      grow();
+      grown.store(true, std::memory_order_release);
+      grown.notify_all();
+    } else if (j > 1) {
+      grown.wait(false, std::memory_order_acquire);  // (task 1 was taken before this one: it is running or done)
+    }
     Mesh& m = parts[j].mesh;
     const std::vector<VertexId>& global = parts[j].global;
     auto id = [&](VertexId v) {
@@ -204,6 +221,8 @@ Mesh stitch(const Mesh& whole, std::vector<Part>& parts, unsigned threads, std::
         fl[h] &= static_cast<std::uint8_t>(~kConstrained);
         if (edge_markers) mk[h] = 0;
         cut_edges.push_back(h);
+      } else if (looks) {
+        bad.push_back(tri_of(h));  // a segment along a cut, frozen in both parts: maybe encroached across it
       }
     }
   for (Part& p : parts) p.mesh = Mesh{};

@@ -82,15 +82,14 @@ struct Criteria {
 };
 
 // The strip's slots: `tris` grown by the seeds and kStripRings rings of
-// neighbours around them (index[t] != kNone: t in the strip). False when
-// that is more than the mesh's share. Afterwards `tris` is in slot order
-// and index[t] is t's place in it.
-bool grow_strip(const Mesh& m, const std::vector<TriId>& seeds, std::vector<TriId>& tris, std::vector<TriId>& index) {
+// neighbours around them (in[t]: t in the strip). False when that is more
+// than the mesh's share. Afterwards `tris` is in slot order.
+bool grow_strip(const Mesh& m, const std::vector<TriId>& seeds, std::vector<TriId>& tris, std::vector<std::uint8_t>& in) {
   const std::size_t most = m.num_triangle_slots() / kMaxStripShare;
   std::size_t begin = tris.size();
   auto add = [&](TriId t) {
-    if (index[t] != kNone) return;
-    index[t] = 0;
+    if (in[t]) return;
+    in[t] = 1;
     tris.push_back(t);
   };
   for (TriId t : seeds) add(t);
@@ -103,7 +102,6 @@ bool grow_strip(const Mesh& m, const std::vector<TriId>& seeds, std::vector<TriI
   }
   if (tris.size() > most) return false;
   std::sort(tris.begin(), tris.end());
-  for (std::size_t i = 0; i < tris.size(); ++i) index[tris[i]] = static_cast<TriId>(i);
   return true;
 }
 
@@ -245,15 +243,18 @@ bool refine_strip(Mesh& whole, const RefineOptions& options, const std::vector<T
   strip_triangles = 0;
   if (whole.has_triangle_area_bounds() || seeds.empty()) return false;
   const Criteria criteria(options);
-  std::vector<TriId> index(whole.num_triangle_slots(), kNone), tris;
-  if (!grow_strip(whole, seeds, tris, index)) return false;
+  std::vector<std::uint8_t> in(whole.num_triangle_slots(), 0);
+  std::vector<TriId> tris;
+  if (!grow_strip(whole, seeds, tris, in)) return false;
   // A strip that leaves bad triangles at its frozen edges grows there and
   // is refined again (the whole is unchanged until it is written back).
   Part strip;
   std::size_t at_small_angles = SIZE_MAX;
   for (int attempt = 0;; ++attempt) {
     strip = Part{};
-    cut_part(whole, tris, [&](TriId t) { return index[t]; }, strip);
+    cut_part(whole, tris, [&](TriId t) {
+      return in[t] ? static_cast<TriId>(std::lower_bound(tris.begin(), tris.end(), t) - tris.begin()) : kNone;
+    }, strip);
     canonical_triangle_order(strip.mesh);
     stats = refine_scanning(strip.mesh, options, 1);
     // (Triangles at small angles that a larger strip does not reduce are
@@ -264,9 +265,9 @@ bool refine_strip(Mesh& whole, const RefineOptions& options, const std::vector<T
       break;
     at_small_angles = stats.below_small_input_angle;
     const std::vector<TriId> more = beyond_bad(whole, strip, criteria);
-    if (more.empty() || !grow_strip(whole, more, tris, index)) break;
+    if (more.empty() || !grow_strip(whole, more, tris, in)) break;
   }
-  index = {};
+  in = {};
   strip_triangles = tris.size();
   // Not finished: the whole-mesh pass on the mesh as the stitch left it.
   if (!stats.complete || stats.below_bound != 0 || stats.too_large != 0 || stats.budget_exhausted ||
