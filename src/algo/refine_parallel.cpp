@@ -9,7 +9,6 @@
 #include "algo/refine_parallel.hpp"
 
 #include <algorithm>
-#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
@@ -109,30 +108,23 @@ Mesh stitch(const Mesh& whole, std::vector<Part>& parts, unsigned threads, std::
   MeshEditor(out).points().reserve(nv + nv / 16);
   MeshEditor(out).out_edges().reserve(nv + nv / 16);
   // The arrays grow to the whole mesh (std::vector zero-fills what it
-  // grows, and the copies overwrite all of it): in place, on the second
-  // part's thread, within the room reserved above, while the first part's
-  // task rewrites only its own slots; later parts wait for it.
+  // grows, and the copies overwrite all of it). With two parts, in place:
+  // on the second part's thread, within the room reserved above (no
+  // reallocation), while the first part's task rewrites only its own slots.
   auto grow = [&] {
     tv.resize(3 * nt);
     tw.resize(3 * nt);
     fl.resize(3 * nt, 0);
     if (edge_markers) mk.resize(3 * nt, 0);
   };
-  const bool grow_in_task = in_place && parts.size() > 1;
+  const bool grow_in_task = in_place && parts.size() == 2;
   if (!grow_in_task) grow();
-  std::atomic<bool> grown{!grow_in_task};
   std::vector<double> area_bounds(bounds ? nt : 0, -1.0);
   first_look.assign(looks ? nt : 0, 0);
   std::vector<std::vector<HalfEdgeId>> open(parts.size());
   std::vector<std::vector<TriId>> bad_in(parts.size());
   run_tasks(parts.size(), threads, [&](std::size_t j) {
-    if (grow_in_task && j == 1) {
-      grow();
-      grown.store(true, std::memory_order_release);
-      grown.notify_all();
-    } else if (j > 1) {
-      grown.wait(false, std::memory_order_acquire);  // (task 1 was taken before this one: it is running or done)
-    }
+    if (grow_in_task && j == 1) grow();
     Mesh& m = parts[j].mesh;
     const std::vector<VertexId>& global = parts[j].global;
     auto id = [&](VertexId v) {
