@@ -229,16 +229,6 @@ Mesh stitch(const Mesh& whole, std::vector<Part>& parts, unsigned threads, std::
   return out;
 }
 
-void add_counts(RefineStats& to, const RefineStats& from) {
-  to.segment_splits += from.segment_splits;
-  to.interior_points += from.interior_points;
-  to.offcenters += from.offcenters;
-  to.rejected_points += from.rejected_points;
-  to.small_angle_skips += from.small_angle_skips;
-  to.failed_splits += from.failed_splits;
-  to.peak_queue = std::max(to.peak_queue, from.peak_queue);
-}
-
 }  // namespace
 
 std::optional<RefineStats> refine_in_parts(Mesh& mesh, const RefineOptions& options, unsigned parts,

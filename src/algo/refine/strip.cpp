@@ -26,8 +26,9 @@ namespace {
 // outer edges (measured: the strip is kept on square-hole and the smooth
 // polygon).
 constexpr int kStripRings = 6;
-// Refinements of a growing strip before the whole-mesh pass takes over.
-constexpr int kStripAttempts = 5;
+// Strips refined, each around what the one before left bad, before the
+// whole-mesh pass takes over.
+constexpr int kStripRounds = 5;
 // A strip larger than this share of the mesh goes to the whole-mesh pass.
 constexpr std::size_t kMaxStripShare = 4;
 
@@ -103,45 +104,6 @@ bool grow_strip(const Mesh& m, const std::vector<TriId>& seeds, std::vector<TriI
   if (tris.size() > most) return false;
   std::sort(tris.begin(), tris.end());
   return true;
-}
-
-// Where a refined strip needs more room: the whole's triangles across the
-// frozen edges within two rings of a triangle it left bad.
-std::vector<TriId> beyond_bad(const Mesh& whole, const Part& strip, const Criteria& criteria) {
-  const Mesh& s = strip.mesh;
-  const std::size_t slots = s.num_triangle_slots();
-  std::vector<std::uint8_t> seen(slots, 0);
-  std::vector<TriId> near;
-  for (TriId t = 0; t < slots; ++t)
-    if (criteria.bad(s, t)) {
-      seen[t] = 1;
-      near.push_back(t);
-    }
-  if (near.empty()) return {};
-  std::size_t begin = 0;
-  for (int ring = 0; ring < 2; ++ring) {
-    const std::size_t end = near.size();
-    for (std::size_t i = begin; i < end; ++i)
-      for (int c = 0; c < 3; ++c)
-        if (const HalfEdgeId o = s.twin(3 * near[i] + c); o != kNone && !seen[tri_of(o)]) {
-          seen[tri_of(o)] = 1;
-          near.push_back(tri_of(o));
-        }
-    begin = end;
-  }
-  std::unordered_map<std::uint64_t, HalfEdgeId> across;  // strip side (whole ids) -> the half-edge outside
-  for (HalfEdgeId o : strip.outer) across.emplace(directed_key(whole.dest(o), whole.origin(o)), o);
-  std::vector<TriId> out;
-  for (TriId t : near)
-    for (int c = 0; c < 3; ++c) {
-      const HalfEdgeId e = 3 * t + c;
-      const VertexId a = s.origin(e), b = s.dest(e);
-      if (s.twin(e) != kNone || !(s.edge_flags(e) & kFrozenEdge) || a >= strip.global.size() || b >= strip.global.size())
-        continue;
-      if (const auto it = across.find(directed_key(strip.global[a], strip.global[b])); it != across.end())
-        out.push_back(tri_of(it->second));
-    }
-  return out;
 }
 
 // The refined strip back into the whole mesh: its first slots into the
@@ -241,66 +203,63 @@ bool refine_strip(Mesh& whole, const RefineOptions& options, const std::vector<T
                   std::vector<std::uint8_t>& first_look, RefineStats& stats, std::size_t& strip_triangles,
                   bool refuse) {
   strip_triangles = 0;
+  stats = {};
   if (whole.has_triangle_area_bounds() || seeds.empty()) return false;
   const Criteria criteria(options);
-  std::vector<std::uint8_t> in(whole.num_triangle_slots(), 0);
-  std::vector<TriId> tris;
-  if (!grow_strip(whole, seeds, tris, in)) return false;
-  // A strip that leaves bad triangles at its frozen edges grows there and
-  // is refined again (the whole is unchanged until it is written back).
-  Part strip;
-  std::size_t at_small_angles = SIZE_MAX;
-  for (int attempt = 0;; ++attempt) {
-    strip = Part{};
+  std::vector<TriId> next = seeds, rewritten;
+  RefineStats last;
+  // A strip that leaves bad triangles (next to its frozen edges) is
+  // written back, and the next round refines a strip around them.
+  for (int round = 0; round < kStripRounds && !next.empty(); ++round) {
+    std::vector<std::uint8_t> in(whole.num_triangle_slots(), 0);
+    std::vector<TriId> tris;
+    if (!grow_strip(whole, next, tris, in)) break;
+    Part strip;
     cut_part(whole, tris, [&](TriId t) {
       return in[t] ? static_cast<TriId>(std::lower_bound(tris.begin(), tris.end(), t) - tris.begin()) : kNone;
     }, strip);
+    in = {};
     canonical_triangle_order(strip.mesh);
-    stats = refine_scanning(strip.mesh, options, 1);
-    // (Triangles at small angles that a larger strip does not reduce are
-    // at the input's: the whole-mesh pass leaves them, and reports them.)
-    if (attempt == kStripAttempts - 1 || (stats.below_bound == 0 && stats.too_large == 0) || stats.budget_exhausted ||
-        stats.time_exhausted || stats.stalled ||
-        (stats.below_small_input_angle > 0 && stats.below_small_input_angle >= at_small_angles))
-      break;
-    at_small_angles = stats.below_small_input_angle;
-    const std::vector<TriId> more = beyond_bad(whole, strip, criteria);
-    if (more.empty() || !grow_strip(whole, more, tris, in)) break;
+    last = refine_scanning(strip.mesh, options, 1);
+    strip_triangles += tris.size();
+    // Triangles at small input angles stay bad, so the whole-mesh pass
+    // will run: on the stitched mesh unchanged, when nothing is written yet.
+    const bool stopped = last.budget_exhausted || last.time_exhausted || last.stalled;
+    if (rewritten.empty() && (stopped || last.below_small_input_angle > 0)) return false;
+    add_counts(stats, last);
+    std::vector<TriId> slot;
+    std::vector<HalfEdgeId> outer = write_back(whole, strip, tris, slot);
+    const std::size_t flipped = rewritten.size() + slot.size();
+    rewritten.insert(rewritten.end(), slot.begin(), slot.end());
+    NotingTopology topo(whole, rewritten);
+    constrained_lawson(topo, outer);
+    // Every vertex whose out-edge may be a strip edge (or a flipped one)
+    // gets the most clockwise one in the whole mesh.
+    const std::size_t nv = whole.num_vertices(), ns = strip.mesh.num_vertices();
+    for (VertexId v = 0; v < ns; ++v)
+      most_clockwise_out_edge(whole, v < strip.global.size() ? strip.global[v] : static_cast<VertexId>(nv - ns + v));
+    for (std::size_t i = flipped; i < rewritten.size(); ++i)
+      for (VertexId v : whole.triangle(rewritten[i])) most_clockwise_out_edge(whole, v);
+    next.clear();
+    if (stopped) break;
+    for (std::size_t i = flipped - slot.size(); i < rewritten.size(); ++i)
+      if (criteria.bad(whole, rewritten[i])) next.push_back(rewritten[i]);
   }
-  in = {};
-  strip_triangles = tris.size();
-  // Not finished: the whole-mesh pass on the mesh as the stitch left it.
-  if (!stats.complete || stats.below_bound != 0 || stats.too_large != 0 || stats.budget_exhausted ||
-      stats.time_exhausted || stats.stalled) {
-    stats = {};  // (nothing of it is kept)
-    return false;
-  }
-  std::vector<TriId> slot;
-  std::vector<HalfEdgeId> outer = write_back(whole, strip, tris, slot);
-  std::vector<TriId> flipped;
-  NotingTopology topo(whole, flipped);
-  constrained_lawson(topo, outer);
-
-  // Every vertex whose out-edge may be a strip edge (or a flipped one) gets
-  // the most clockwise one in the whole mesh.
-  for (VertexId v = 0; v < strip.mesh.num_vertices(); ++v)
-    most_clockwise_out_edge(whole, v < strip.global.size() ? strip.global[v]
-                                                           : static_cast<VertexId>(whole.num_vertices() -
-                                                                                   strip.mesh.num_vertices() + v));
-  for (TriId t : flipped)
-    for (VertexId v : whole.triangle(t)) most_clockwise_out_edge(whole, v);
-
-  // Outside the strip and the flips, each triangle is one of a part's,
+  if (rewritten.empty()) return false;
+  // Outside the strips and the flips, each triangle is one of a part's,
   // which the part left good (the seeds hold every one it left bad).
-  bool done = !refuse;
-  for (std::size_t i = 0; i < slot.size() && done; ++i) done = !criteria.encroached_side(whole, slot[i]);
-  for (std::size_t i = 0; i < flipped.size() && done; ++i)
-    done = !criteria.bad(whole, flipped[i]) && !criteria.encroached_side(whole, flipped[i]);
-  if (done) return true;
+  bool done = !refuse && next.empty() && last.complete;
+  for (std::size_t i = 0; i < rewritten.size() && done; ++i)
+    done = !criteria.bad(whole, rewritten[i]) && !criteria.encroached_side(whole, rewritten[i]);
+  if (done) {
+    stats.complete = true;
+    stats.min_angle_deg = last.min_angle_deg;
+    stats.reached_angle_deg = last.reached_angle_deg;
+    return true;
+  }
   if (!first_look.empty()) {
     first_look.resize(whole.num_triangle_slots(), kLookAgain);
-    for (TriId t : slot) first_look[t] = kLookAgain;
-    for (TriId t : flipped) first_look[t] = kLookAgain;
+    for (TriId t : rewritten) first_look[t] = kLookAgain;
   }
   return false;
 }

@@ -2,6 +2,7 @@
 // on a strip (strip.cpp): a part cut out of the whole mesh with its outer
 // edges frozen, and the flips that note the slots they rewrite.
 #pragma once
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
@@ -101,6 +102,18 @@ void cut_part(const Mesh& whole, const std::vector<TriId>& tris, Local local_ind
   m.compact();  // out-edges, counts
 }
 
+// Adds the counts of a refinement (its Steiner points by kind, rejections
+// and skips; the largest queue) to another's.
+inline void add_counts(RefineStats& to, const RefineStats& from) {
+  to.segment_splits += from.segment_splits;
+  to.interior_points += from.interior_points;
+  to.offcenters += from.offcenters;
+  to.rejected_points += from.rejected_points;
+  to.small_angle_skips += from.small_angle_skips;
+  to.failed_splits += from.failed_splits;
+  to.peak_queue = std::max(to.peak_queue, from.peak_queue);
+}
+
 // The mesh's own flips, noting the slots they rewrite (the parts' verdicts
 // on those no longer hold).
 class NotingTopology : public MeshTopology {
@@ -118,16 +131,19 @@ class NotingTopology : public MeshTopology {
 
 // refine_in_parts' last pass on a strip: the triangles within a few rings
 // of `seeds` (the cuts' triangles, the slots the stitch's flips rewrote,
-// and the parts' final bad triangles) are cut out with their outer edges
-// frozen, refined on one thread, written back into their own slots (new
-// ones appended), and the outer edges flipped to the constrained Delaunay
-// triangulation. True, with the strip's statistics in `stats`, when no
-// triangle of the whole mesh is bad and no subsegment the strip or the
-// flips touched is encroached: the mesh is finished. False: the mesh is a
-// valid constrained Delaunay triangulation still (unchanged when the strip
-// was not refined), `first_look` marks every slot rewritten (kLookAgain),
-// and the whole-mesh pass must run; `stats` holds the strip's counts.
-// `strip_triangles`: the strip's size before refinement (0: not refined).
+// the parts' final bad triangles and those of segments along a cut) are
+// cut out with their outer edges frozen, refined on one thread, written
+// back into their own slots (new ones appended), and the outer edges
+// flipped to the constrained Delaunay triangulation; what that leaves bad
+// (next to the frozen edges) seeds the next round, a few at most. True,
+// with the strips' statistics in `stats`, when no triangle of the whole
+// mesh is bad and no subsegment the strips or the flips touched is
+// encroached: the mesh is finished. False: the whole-mesh pass must run,
+// on the mesh unchanged when nothing was written back (`stats` empty:
+// a first strip left triangles at small input angles, or was stopped),
+// else on a valid constrained Delaunay triangulation with every slot
+// rewritten marked kLookAgain in `first_look` (`stats`: the strips' counts).
+// `strip_triangles`: the strips' sizes before refinement, summed.
 // `refuse` (tests): false after writing back, as if a check had failed.
 bool refine_strip(Mesh& whole, const RefineOptions& options, const std::vector<TriId>& seeds,
                   std::vector<std::uint8_t>& first_look, RefineStats& stats, std::size_t& strip_triangles,
