@@ -28,7 +28,7 @@ namespace {
 constexpr int kStripRings = 6;
 // Strips refined, each around what the one before left bad, before the
 // whole-mesh pass takes over.
-constexpr int kStripRounds = 5;
+constexpr int kStripRounds = 10;
 // A strip larger than this share of the mesh goes to the whole-mesh pass.
 constexpr std::size_t kMaxStripShare = 4;
 
