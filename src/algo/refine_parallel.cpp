@@ -18,6 +18,7 @@
 #include <unordered_set>
 #include <vector>
 
+#include "algo/refine/strip.hpp"
 #include "core/parallel.hpp"
 #include "mesh/canonical.hpp"
 #include "mesh/editor.hpp"
@@ -32,8 +33,6 @@ namespace {
 // of address space each for their vertices and twins).
 constexpr double kMaxStitchReserve = 134217728.0;
 
-std::uint64_t directed_key(VertexId a, VertexId b) { return (std::uint64_t{a} << 32) | b; }
-
 double domain_area(const Mesh& m) {
   double area = 0;
   for (TriId t = 0; t < m.num_triangle_slots(); ++t) {
@@ -45,96 +44,14 @@ double domain_area(const Mesh& m) {
   return area;
 }
 
-// One part: its mesh, and its first vertices' ids in the whole mesh.
-struct Part {
-  Mesh mesh;
-  std::vector<VertexId> global;  // part vertex (those it started with) -> whole-mesh vertex
-  std::vector<std::uint64_t> cuts;  // the temporary segments (whole-mesh ids, one direction each)
-  RefineStats stats;
-  RefineStage stage;  // keeps the final verdict per slot: the last pass's first look
-};
-
-// The triangles of `whole` in slab `j` (slab[t] == j) as a mesh of their
-// own: vertex, edge and triangle data copied, the edges to other slabs
-// constrained (temporary segments, marker 0).
-void cut_part(const Mesh& whole, const std::vector<std::uint32_t>& slab, const std::vector<TriId>& index,
-              std::uint32_t j, Part& part) {
-  const std::size_t n = whole.num_vertices(), slots = whole.num_triangle_slots();
-  std::vector<VertexId> local(n, kNone);
-  std::vector<TriId> tris;
-  for (TriId t = 0; t < slots; ++t)
-    if (slab[t] == j) tris.push_back(t);
-  for (TriId t : tris)
-    for (VertexId v : whole.triangle(t))
-      if (local[v] == kNone) {
-        local[v] = static_cast<VertexId>(part.global.size());
-        part.global.push_back(v);
-      }
-  Mesh& m = part.mesh;
-  const std::size_t nv = part.global.size(), na = whole.num_vertex_attributes();
-  MeshEditor(m).points().resize(nv);
-  for (std::size_t v = 0; v < nv; ++v) MeshEditor(m).points()[v] = whole.point(part.global[v]);
-  if (!whole.vertex_markers().empty()) {
-    m.vertex_markers().resize(nv);
-    for (std::size_t v = 0; v < nv; ++v) m.vertex_markers()[v] = whole.vertex_markers()[part.global[v]];
-  }
-  m.set_num_vertex_attributes(na);
-  m.vertex_attributes().resize(nv * na);
-  for (std::size_t v = 0; v < nv; ++v)
-    for (std::size_t k = 0; k < na; ++k)
-      m.vertex_attributes()[v * na + k] = whole.vertex_attributes()[std::size_t{part.global[v]} * na + k];
-  MeshEditor(m).out_edges().assign(nv, kNone);
-
-  const std::size_t nt = tris.size(), ta = whole.num_triangle_attributes();
-  std::vector<VertexId>& tv = MeshEditor(m).triangle_vertices();
-  std::vector<HalfEdgeId>& tw = MeshEditor(m).twins();
-  std::vector<std::uint8_t>& fl = MeshEditor(m).edge_flags();
-  std::vector<int>& mk = MeshEditor(m).edge_markers();
-  tv.resize(3 * nt);
-  tw.resize(3 * nt);
-  fl.assign(3 * nt, 0);
-  // Edge markers only when the whole has them: all-zero markers are the
-  // same to every reader, but cost 4 bytes per half-edge, their copies, and
-  // passes that skip meshes without them (finish_vertex_markers).
-  const bool edge_markers = whole.has_edge_markers();
-  if (edge_markers) mk.assign(3 * nt, 0);
-  m.set_num_triangle_attributes(ta);
-  m.triangle_attributes().resize(nt * ta);
-  for (std::size_t i = 0; i < nt; ++i) {
-    const TriId t = tris[i];
-    for (int c = 0; c < 3; ++c) {
-      const HalfEdgeId e = 3 * t + c, f = static_cast<HalfEdgeId>(3 * i + c), o = whole.twin(e);
-      tv[f] = local[whole.origin(e)];
-      fl[f] = whole.edge_flags(e);
-      if (edge_markers) mk[f] = whole.edge_marker(e);
-      if (o == kNone) {
-        tw[f] = kNone;
-      } else if (slab[tri_of(o)] == j) {
-        tw[f] = static_cast<HalfEdgeId>(3 * std::size_t{index[tri_of(o)]} + o % 3);
-      } else {
-        tw[f] = kNone;
-        if (!(fl[f] & kConstrained)) {
-          fl[f] = static_cast<std::uint8_t>(fl[f] | kConstrained | kFrozenEdge);
-          part.cuts.push_back(directed_key(whole.origin(e), whole.dest(e)));
-        } else {
-          fl[f] = static_cast<std::uint8_t>(fl[f] | kFrozenEdge);  // a segment along the cut: split on neither side
-        }
-      }
-    }
-    for (std::size_t k = 0; k < ta; ++k)
-      m.triangle_attributes()[i * ta + k] = whole.triangle_attributes()[std::size_t{t} * ta + k];
-  }
-  if (whole.has_triangle_area_bounds())
-    for (std::size_t i = 0; i < nt; ++i)
-      m.set_triangle_area_bound(static_cast<TriId>(i), whole.triangle_area_bound(tris[i]));
-  m.compact();  // out-edges, counts
-}
-
 // The parts back in one mesh: the whole mesh's vertices keep their ids, the
 // parts' new vertices follow part by part; boundary half-edges are paired by
 // their vertices, and the temporary segments become ordinary edges again.
+// Every vertex gets its out-edge from a part (the cut vertices' may be an
+// inner edge of the whole, at its boundary: the strip turns them), and
+// `bad` lists the slots a part left bad, and those of segments along a cut.
 Mesh stitch(const Mesh& whole, std::vector<Part>& parts, unsigned threads, std::vector<HalfEdgeId>& cut_edges,
-           std::vector<std::uint8_t>& first_look) {
+           std::vector<std::uint8_t>& first_look, std::vector<TriId>& bad) {
   const std::size_t n0 = whole.num_vertices(), na = whole.num_vertex_attributes(),
                     ta = whole.num_triangle_attributes();
   std::vector<std::size_t> vbase(parts.size() + 1, n0), tbase(parts.size() + 1, 0);
@@ -190,14 +107,24 @@ Mesh stitch(const Mesh& whole, std::vector<Part>& parts, unsigned threads, std::
   if (edge_markers) mk.reserve(room);
   MeshEditor(out).points().reserve(nv + nv / 16);
   MeshEditor(out).out_edges().reserve(nv + nv / 16);
-  tv.resize(3 * nt);
-  tw.resize(3 * nt);
-  fl.resize(3 * nt, 0);
-  if (edge_markers) mk.resize(3 * nt, 0);
+  // The arrays grow to the whole mesh (std::vector zero-fills what it
+  // grows, and the copies overwrite all of it). With two parts, in place:
+  // on the second part's thread, within the room reserved above (no
+  // reallocation), while the first part's task rewrites only its own slots.
+  auto grow = [&] {
+    tv.resize(3 * nt);
+    tw.resize(3 * nt);
+    fl.resize(3 * nt, 0);
+    if (edge_markers) mk.resize(3 * nt, 0);
+  };
+  const bool grow_in_task = in_place && parts.size() == 2;
+  if (!grow_in_task) grow();
   std::vector<double> area_bounds(bounds ? nt : 0, -1.0);
   first_look.assign(looks ? nt : 0, 0);
   std::vector<std::vector<HalfEdgeId>> open(parts.size());
+  std::vector<std::vector<TriId>> bad_in(parts.size());
   run_tasks(parts.size(), threads, [&](std::size_t j) {
+    if (grow_in_task && j == 1) grow();
     Mesh& m = parts[j].mesh;
     const std::vector<VertexId>& global = parts[j].global;
     auto id = [&](VertexId v) {
@@ -206,6 +133,7 @@ Mesh stitch(const Mesh& whole, std::vector<Part>& parts, unsigned threads, std::
     for (VertexId v = static_cast<VertexId>(global.size()); v < m.num_vertices(); ++v) {
       const VertexId g = id(v);
       MeshEditor(out).points()[g] = m.point(v);
+      if (const HalfEdgeId e = m.out_edge(v); e != kNone) out.set_out_edge(g, static_cast<HalfEdgeId>(3 * tbase[j] + e));
       if (markers && v < m.vertex_markers().size()) out.vertex_markers()[g] = m.vertex_markers()[v];
       if (std::size_t{v} * na + na <= m.vertex_attributes().size())
         for (std::size_t k = 0; k < na; ++k)
@@ -250,8 +178,21 @@ Mesh stitch(const Mesh& whole, std::vector<Part>& parts, unsigned threads, std::
       out.triangle_attributes()[tbase[j] * ta + k] = m.triangle_attributes()[k];
     if (bounds)
       for (TriId t = 0; t < slots; ++t) area_bounds[tbase[j] + t] = m.triangle_area_bound(static_cast<TriId>(t));
-    if (looks) std::copy(parts[j].stage.final_bad.begin(), parts[j].stage.final_bad.end(), first_look.begin() + tbase[j]);
+    if (looks) {
+      const std::vector<std::uint8_t>& fb = parts[j].stage.final_bad;
+      std::copy(fb.begin(), fb.end(), first_look.begin() + tbase[j]);
+      for (TriId t = 0; t < fb.size(); ++t)
+        if (fb[t]) bad_in[j].push_back(static_cast<TriId>(tbase[j] + t));
+    }
   });
+  // The vertices the parts started with, some in several parts: in part order.
+  for (std::size_t j = 0; j < parts.size(); ++j) {
+    const Mesh& m = parts[j].mesh;
+    for (VertexId v = 0; v < parts[j].global.size(); ++v)
+      if (const HalfEdgeId e = m.out_edge(v); e != kNone)
+        out.set_out_edge(parts[j].global[v], static_cast<HalfEdgeId>(3 * tbase[j] + e));
+  }
+  for (const auto& list : bad_in) bad.insert(bad.end(), list.begin(), list.end());
   std::unordered_set<std::uint64_t> cuts;
   std::unordered_map<std::uint64_t, HalfEdgeId> by_vertices;
   for (const Part& p : parts) cuts.insert(p.cuts.begin(), p.cuts.end());
@@ -272,47 +213,26 @@ Mesh stitch(const Mesh& whole, std::vector<Part>& parts, unsigned threads, std::
         fl[h] &= static_cast<std::uint8_t>(~kConstrained);
         if (edge_markers) mk[h] = 0;
         cut_edges.push_back(h);
+      } else if (looks) {
+        bad.push_back(tri_of(h));  // a segment along a cut, frozen in both parts: maybe encroached across it
       }
     }
   for (Part& p : parts) p.mesh = Mesh{};
   if (bounds)
     for (TriId t = 0; t < nt; ++t) out.set_triangle_area_bound(t, area_bounds[t]);
-  // The parts are compacted (no dead or ghost slot), so is their union. Its
-  // out-edges stay unset (kNone): the Lawson flips below do not read them,
-  // and the last pass's setup sets them all from scratch on every thread
-  // (Mesh::compact() here cost a whole-mesh pass on one thread).
+  // The parts are compacted (no dead or ghost slot), so is their union, once
+  // the strip has turned the cut vertices' out-edges (the whole-mesh pass
+  // sets them all from scratch; Mesh::compact() here cost a whole-mesh pass
+  // on one thread).
   MeshEditor(out).set_live_real(nt);
   MeshEditor(out).set_compacted();
   return out;
 }
 
-// The mesh's own flips, noting the slots they rewrite: the parts' verdicts
-// on those no longer hold.
-class NotingTopology : public MeshTopology {
- public:
-  NotingTopology(Mesh& m, std::vector<std::uint8_t>& look) : MeshTopology(m), look_(look) {}
-  void flip(const FlipQuad& q, TraceReason why) {
-    MeshTopology::flip(q, why);
-    if (!look_.empty()) look_[tri_of(q.e)] = look_[tri_of(q.f)] = kLookAgain;
-  }
-
- private:
-  std::vector<std::uint8_t>& look_;
-};
-
-void add_counts(RefineStats& to, const RefineStats& from) {
-  to.segment_splits += from.segment_splits;
-  to.interior_points += from.interior_points;
-  to.offcenters += from.offcenters;
-  to.rejected_points += from.rejected_points;
-  to.small_angle_skips += from.small_angle_skips;
-  to.failed_splits += from.failed_splits;
-  to.peak_queue = std::max(to.peak_queue, from.peak_queue);
-}
-
 }  // namespace
 
-std::optional<RefineStats> refine_in_parts(Mesh& mesh, const RefineOptions& options, unsigned parts) {
+std::optional<RefineStats> refine_in_parts(Mesh& mesh, const RefineOptions& options, unsigned parts,
+                                           LastPassReport* report) {
   const unsigned threads = resolve_threads(options.threads);
   if (threads < 2 || !(options.max_area > 0) || options.max_area_at || options.max_edge_at ||
       options.max_steiner != kAutomaticBudget || options.time_limit_seconds > 0 || options.conforming_delaunay ||
@@ -371,7 +291,10 @@ std::optional<RefineStats> refine_in_parts(Mesh& mesh, const RefineOptions& opti
     }
     std::vector<Part> pieces(parts);
     run_tasks(parts, threads, [&](std::size_t j) {
-      cut_part(mesh, slab, index, static_cast<std::uint32_t>(j), pieces[j]);
+      std::vector<TriId> tris;
+      for (TriId t = 0; t < slots; ++t)
+        if (slab[t] == j) tris.push_back(t);
+      cut_part(mesh, tris, [&](TriId t) { return slab[t] == j ? index[t] : kNone; }, pieces[j]);
       Part& p = pieces[j];
       if (p.mesh.num_triangles() == 0) return;
       // refine() on one thread (the part is compact and within the
@@ -394,15 +317,47 @@ std::optional<RefineStats> refine_in_parts(Mesh& mesh, const RefineOptions& opti
       p.stage.keep_final_bad = true;
       p.stats = refine_scanning(p.mesh, one, 1, &p.stage);
     });
-    for (const Part& p : pieces) add_counts(total, p.stats);
+    bool strip = true;  // the last pass on a strip around the cuts (strip.cpp), unless a part was stopped
+    for (const Part& p : pieces) {
+      add_counts(total, p.stats);
+      strip = strip && !p.stats.budget_exhausted && !p.stats.time_exhausted && !p.stats.stalled;
+    }
     std::vector<HalfEdgeId> cut_edges;
-    mesh = stitch(mesh, pieces, threads, cut_edges, last_stage.first_look);
+    std::vector<TriId> seeds;  // the parts' bad triangles, the cuts' and the flipped ones
+    mesh = stitch(mesh, pieces, threads, cut_edges, last_stage.first_look, seeds);
+    for (HalfEdgeId h : cut_edges) {
+      seeds.push_back(tri_of(h));
+      seeds.push_back(tri_of(mesh.twin(h)));
+    }
     // Each part is a constrained Delaunay triangulation: only edges whose
     // triangles come from different parts (the cuts) can fail the
     // empty-circle test, and then the edges their flips make.
-    NotingTopology topo(mesh, last_stage.first_look);
+    const std::size_t flips_from = seeds.size();
+    NotingTopology topo(mesh, seeds);
     constrained_lawson(topo, cut_edges);
+    if (!last_stage.first_look.empty())
+      for (std::size_t i = flips_from; i < seeds.size(); ++i) last_stage.first_look[seeds[i]] = kLookAgain;
     last_stage.reserve = false;  // the stitch has
+    // (Without the parts' verdicts, the strip would not know their bad triangles.)
+    if (report && report->strip == LastPassReport::Strip::Never) strip = false;
+    if (strip && !last_stage.first_look.empty()) {
+      RefineStats on_strip;
+      std::size_t strip_triangles = 0;
+      const bool refuse = report && report->strip == LastPassReport::Strip::Refuse;
+      const bool kept = refine_strip(mesh, one, seeds, last_stage.first_look, on_strip, strip_triangles, refuse);
+      if (report) {
+        report->strip_kept = kept;
+        report->strip_triangles = strip_triangles;
+      }
+      if (kept) {
+        add_counts(on_strip, total);
+        on_strip.input_vertices = input_vertices;
+        on_strip.steiner_points = mesh.num_vertices() - input_vertices;
+        on_strip.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        return on_strip;
+      }
+      add_counts(total, on_strip);
+    }
   }
   one.progress = options.progress;
   RefineStats last = refine_scanning(mesh, one, threads, &last_stage);

@@ -62,6 +62,18 @@ inline constexpr std::uint8_t kLookAgain = 2;
 RefineStats refine_scanning(Mesh& mesh, const RefineOptions& options, unsigned scan_threads,
                             RefineStage* stage = nullptr);
 
-std::optional<RefineStats> refine_in_parts(Mesh& mesh, const RefineOptions& options, unsigned parts = 0);
+// The last pass of refine_in_parts, for tests. In: whether to try the
+// strip (src/algo/refine/strip.hpp) first; Refuse writes it back, then
+// leaves the mesh to the whole-mesh pass as a failed check would. Out: the
+// strip was kept (the mesh finished on it); its triangles before
+// refinement (0: not refined).
+struct LastPassReport {
+  enum class Strip { Try, Never, Refuse } strip = Strip::Try;
+  bool strip_kept = false;
+  std::size_t strip_triangles = 0;
+};
+
+std::optional<RefineStats> refine_in_parts(Mesh& mesh, const RefineOptions& options, unsigned parts = 0,
+                                           LastPassReport* report = nullptr);
 
 }  // namespace deltamesh::detail
