@@ -454,7 +454,7 @@ TEST(HubsLimit, BunchTipsAtThePrecisionOfDoubles) {
 // doubles); without the precision floor ~22k (63); with the hub-wedge rule
 // and Shewchuk's rule in its sector the work is no longer bounded and stops
 // at fuzz_hubs' budget (39,200). Disabled until the rules are fixed.
-TEST(HubsLimit, DISABLED_TwoBunchesAtQ33StayWithinBoundedWork) {
+TEST(HubsLimit, TwoBunchesAtQ33StayWithinBoundedWork) {
   const dm::RefineStats st = refine_fuzz_hub("refine_hub_bunch_cascade_q33.poly", 33, 60);
   SCOPED_TRACE(st.summary());
   EXPECT_FALSE(st.budget_exhausted);
