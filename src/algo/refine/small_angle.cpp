@@ -466,8 +466,8 @@ HalfEdgeId Refiner::hub_wedge_side(const Point& c, std::uint32_t& far_seg, Verte
 // The mid-wedge rule spares the cells whose crossing edge is their
 // shortest; a point inserted inside a cell is not spared: its skinny
 // triangles send their own points into the next cell, and so on down the
-// wedge (two bunches of spokes 1e-8..1e-6 rad apart, 2^26 long, at -q33:
-// 236,000 Steiner points in one wedge, 2^19 in from the tips). So a skinny
+// wedge (bunches of spokes 1e-15..1e-6 rad apart, 2^26 long, at -q33:
+// 236,000 Steiner points, most in one wedge 2^19 in from the tips). So a skinny
 // triangle in a small input angle at the hub whose Steiner point c would
 // sit in such a cell (strictly inside the wedge, nearer the apex than
 // either tip, its cavity reaching both sides) is left alone, as the small
@@ -500,7 +500,7 @@ bool Refiner::leave_for_narrow_wedge(TriId t, const Point& c) const {
         const Point& p0 = pts_[tv_[3 * t]];
         const Point& p1 = pts_[tv_[3 * t + 1]];
         const Point& p2 = pts_[tv_[3 * t + 2]];
-        return in_small_sector(apex, {(p0.x + p1.x + p2.x) / 3, (p0.y + p1.y + p2.y) / 3});
+        if (in_small_sector(apex, {(p0.x + p1.x + p2.x) / 3, (p0.y + p1.y + p2.y) / 3})) return true;
       }
     }
   }
