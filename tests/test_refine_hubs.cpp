@@ -463,4 +463,18 @@ TEST(HubsLimit, TwoBunchesAtQ33StayWithinBoundedWork) {
   EXPECT_EQ(st.below_bound, st.below_small_input_angle + st.below_precision);
 }
 
+// A fuzz_hubs timeout of stop 27: 152 spokes in bunches of four, 1e-15..1e-6
+// rad apart. The same cascade down one narrow wedge ran it to the fuzzer's
+// budget (51,400) at 33° and 34°; with leave_for_narrow_wedge 24,260 and
+// 31,498 Steiner points.
+TEST(HubsLimit, BunchesOfFourStayWithinBoundedWork) {
+  for (const double q : {33.0, 34.0}) {
+    const dm::RefineStats st = refine_fuzz_hub("refine_hub_bunches_of_four_q34.poly", q, 60);
+    SCOPED_TRACE("q" + std::to_string(q) + ": " + st.summary());
+    EXPECT_FALSE(st.budget_exhausted);
+    EXPECT_FALSE(st.time_exhausted);
+    EXPECT_EQ(st.below_bound, st.below_small_input_angle + st.below_precision);
+  }
+}
+
 }  // namespace
