@@ -448,17 +448,33 @@ TEST(HubsLimit, BunchTipsAtThePrecisionOfDoubles) {
   EXPECT_TRUE(st.complete || st.below_precision > 0);
 }
 
-// Found by an idle fuzz_hubs run after stop 26's merges: 91 spokes in two
-// bunches (a few 1e-8 rad wide) at 2^26 scale, q33. Main at 0840b5d and
-// ed8ef0e finished with ~12k Steiner points (20 left at the precision of
-// doubles); without the precision floor ~22k (63); with the hub-wedge rule
-// and Shewchuk's rule in its sector the work is no longer bounded and stops
-// at fuzz_hubs' budget (39,200). Disabled until the rules are fixed.
-TEST(HubsLimit, DISABLED_TwoBunchesAtQ33StayWithinBoundedWork) {
+// Found by an idle fuzz_hubs run after stop 26's merges: 91 spokes, 30
+// bunches of three (1e-15..1e-6 rad apart) and one alone, 2^26 long, q33. Main at
+// 0840b5d and ed8ef0e finished with ~12k Steiner points; without the
+// precision floor ~22k (off-centres: past 400k); after stop 26's rules
+// (the best point's grid rows from 1.15) a cascade down one narrow wedge
+// from its tips took 236,712 (past fuzz_hubs' budget of 39,200). Leaving
+// the triangles whose points would sit in a cell across a hub's narrow
+// wedge (Refiner::leave_for_narrow_wedge) ends it: 18,610.
+TEST(HubsLimit, TwoBunchesAtQ33StayWithinBoundedWork) {
   const dm::RefineStats st = refine_fuzz_hub("refine_hub_bunch_cascade_q33.poly", 33, 60);
   SCOPED_TRACE(st.summary());
   EXPECT_FALSE(st.budget_exhausted);
   EXPECT_EQ(st.below_bound, st.below_small_input_angle + st.below_precision);
+}
+
+// A fuzz_hubs timeout of stop 27: 152 spokes in bunches of four, 1e-15..1e-6
+// rad apart. The same cascade down one narrow wedge ran it to the fuzzer's
+// budget (51,400) at 33° and 34°; with leave_for_narrow_wedge 24,260 and
+// 31,498 Steiner points.
+TEST(HubsLimit, BunchesOfFourStayWithinBoundedWork) {
+  for (const double q : {33.0, 34.0}) {
+    const dm::RefineStats st = refine_fuzz_hub("refine_hub_bunches_of_four_q34.poly", q, 60);
+    SCOPED_TRACE("q" + std::to_string(q) + ": " + st.summary());
+    EXPECT_FALSE(st.budget_exhausted);
+    EXPECT_FALSE(st.time_exhausted);
+    EXPECT_EQ(st.below_bound, st.below_small_input_angle + st.below_precision);
+  }
 }
 
 }  // namespace

@@ -372,6 +372,13 @@ void Refiner::decide(TriId t, Decision& d) {
         d.mirror_seg = far_seg, d.mirror_apex = apex, d.mirror_radius = std::sqrt(dist2(m, pts_[apex]));
       }
     }
+    // A point in a cell across a hub's narrow wedge for a triangle in that
+    // small angle: left alone, as the angle explains it (small_angle.cpp).
+    if (enc_scratch_.empty() && leave_for_narrow_wedge(t, d.c)) {
+      d.reason = Reason::SmallAngle;
+      d.transient = true;
+      return;
+    }
   }
   // R2's rejection: a point that encroaches subsegments is not inserted;
   // they are split instead. One that encroaches only subsegments that may

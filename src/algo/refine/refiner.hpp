@@ -240,6 +240,7 @@ class Refiner {
   void apex_feature_sizes_in_parallel();  // setup_scan.cpp
   bool in_small_sector(VertexId apex, const Point& g) const;
   HalfEdgeId hub_wedge_side(const Point& c, std::uint32_t& far_seg, VertexId& apex) const;
+  bool leave_for_narrow_wedge(TriId t, const Point& c) const;
   bool exempt_from_r1(HalfEdgeId e) const;
   void mirror_split(std::uint32_t seg, VertexId apex, double radius, int depth);
   double gap2(std::uint32_t s, std::uint32_t t, VertexId apex, double radius) const;

@@ -459,6 +459,54 @@ HalfEdgeId Refiner::hub_wedge_side(const Point& c, std::uint32_t& far_seg, Verte
   return kNone;
 }
 
+// A hub's narrow wedge (two neighbouring spokes under kWedgeAngle apart)
+// is w = r·angle wide at radius r, and that width is its local feature
+// size: a quality mesh of the cells between its sides costs 1/angle
+// triangles per halving of r (a million for two spokes 1e-6 rad apart).
+// The mid-wedge rule spares the cells whose crossing edge is their
+// shortest; a point inserted inside a cell is not spared: its skinny
+// triangles send their own points into the next cell, and so on down the
+// wedge (bunches of spokes 1e-15..1e-6 rad apart, 2^26 long, at -q33:
+// 236,000 Steiner points, most in one wedge 2^19 in from the tips). So a skinny
+// triangle in a small input angle at the hub whose Steiner point c would
+// sit in such a cell (strictly inside the wedge, nearer the apex than
+// either tip, its cavity reaching both sides) is left alone, as the small
+// angle explains it.
+bool Refiner::leave_for_narrow_wedge(TriId t, const Point& c) const {
+  auto on_cavity = [&](std::uint32_t s) {
+    return std::any_of(bnd_.begin(), bnd_.end(), [&](const BoundaryEdge& o) {
+      return (o.flags & kConstrained) && segment_of(o.a, o.b) == s;
+    });
+  };
+  for (const BoundaryEdge& b : bnd_) {
+    if (!(b.flags & kConstrained)) continue;
+    const std::uint32_t s = segment_of(b.a, b.b);
+    if (s == kNone) continue;
+    for (int end = 0; end < 2; ++end) {
+      const VertexId apex = segs_[s][end];
+      if (!(apex_lfs2_[apex] > 0)) continue;  // hubs only
+      const Point& A = pts_[apex];
+      const Point& S = pts_[segs_[s][1 - end]];
+      const double rc2 = dist2(c, A);
+      for (const std::uint32_t p : partners_[2 * s + end]) {
+        if (p == kNone) continue;
+        const Point& P = pts_[segs_[p][0] == apex ? segs_[p][1] : segs_[p][0]];
+        if (!(rc2 < dist2(S, A) && rc2 < dist2(P, A))) continue;
+        // Strictly inside the cone A, S -> P (convex: under kWedgeAngle).
+        const double side = orient2d(A, S, P);
+        const double s1 = orient2d(A, S, c), s2 = orient2d(A, c, P);
+        if (!(side > 0 ? (s1 > 0 && s2 > 0) : side < 0 && (s1 < 0 && s2 < 0))) continue;
+        if (!on_cavity(p)) continue;
+        const Point& p0 = pts_[tv_[3 * t]];
+        const Point& p1 = pts_[tv_[3 * t + 1]];
+        const Point& p2 = pts_[tv_[3 * t + 2]];
+        if (in_small_sector(apex, {(p0.x + p1.x + p2.x) / 3, (p0.y + p1.y + p2.y) / 3})) return true;
+      }
+    }
+  }
+  return false;
+}
+
 // Whether g lies in an input angle under 60° at `apex`: between two
 // segments there that are next to each other around it, at most as far
 // from the apex as the longer of the two reaches.
