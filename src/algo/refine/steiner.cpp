@@ -50,10 +50,11 @@ constexpr double kShifts[] = {0.0, -0.25, 0.25, -0.5, 0.5, -0.75, 0.75, -1.0, 1.
 constexpr std::size_t kFirstRowUnsized = 2;
 // best_point()'s seeds without size bounds: the apex height over a skinny
 // edge AB in units of |AB|, and the fractions of the way to it from the
-// primary (measured on the corpus: 0.866, the equilateral apex, and 1.1
-// gave more triangles; two steps fewer candidates but more triangles).
+// primary. Measured on the reference set (docs/benchmarks.md): fractions
+// 0.4, 0.7, 1 gave 1% more triangles (most such seeds leave the petal),
+// 0.2, 0.4 0.5% more; heights 0.866 (the equilateral apex) and 0.45 more.
 constexpr double kSeedHeight = 0.6;
-constexpr double kSeedSteps[] = {0.4, 0.7, 1.0};
+constexpr double kSeedSteps[] = {0.15, 0.3, 0.5};
 
 }  // namespace
 
@@ -406,9 +407,11 @@ Point Refiner::best_point(TriId t, const Eval& ev, const Point& primary) {
     // Seeds instead of the grid: for each cavity edge AB that the primary
     // leaves skinny, points from the primary towards the apex of a good
     // triangle on AB (0.6 |AB| from AB's midpoint, on the primary's side),
-    // the direction in which that triangle stops being skinny. On the
-    // corpus this scores ~3x fewer candidates than the grid for fewer
-    // triangles (docs/benchmarks.md).
+    // the direction in which that triangle stops being skinny (after
+    // Erten and Üngör's search of the regions where each new triangle is
+    // good). With the wider pattern search below this scores ~2.5x fewer
+    // candidates than the grid on the corpus, for fewer triangles
+    // (docs/benchmarks.md).
     for (const auto& [A, B] : skinny_edges_) {
       const Point X{0.5 * (A.x + B.x) - kSeedHeight * (B.y - A.y), 0.5 * (A.y + B.y) + kSeedHeight * (B.x - A.x)};
       for (const double a : kSeedSteps) {
