@@ -40,7 +40,7 @@ enum class SteinerRule {
   // grid), each point scored on the few triangles whose circumcircle meets
   // the petal, gathered once. Next to triangles that break a size bound the
   // off-centre is used as is. Default: on the corpus 18% (q30) to 22% (q33)
-  // fewer triangles than Triangle 1.6, for about 1.5-1.9 times the
+  // fewer triangles than Triangle 1.6, for about 1.4-1.9 times the
   // off-centres' instructions (docs/benchmarks.md).
   Best,
   // A coarse grid and a pattern search with every candidate scored by the
