@@ -271,9 +271,10 @@ TEST(Refine, AreaBoundsGlobalPerTriangleAndCallback) {
 
 // Each rule's meshes are valid and within the bound; the best-point search
 // gives fewer triangles than off-centres, which give fewer than circumcentres.
-// Best scores the same candidates as Grid on the triangles near the petal
-// instead of on the mesh (floating-point circles instead of exact incircle
-// tests), so the two choose the same points but for ties.
+// Grid searches a coarse grid of the petal, then refines around its winner;
+// Best (without size bounds) starts from points towards the skinny
+// triangles' good sides instead, with ~3x fewer candidates: its counts stay
+// close to the exhaustive grid's.
 TEST(Refine, SteinerRulesRankByTriangleCount) {
   std::size_t total[4] = {0, 0, 0, 0};
   const dm::SteinerRule rules[4] = {dm::SteinerRule::Best, dm::SteinerRule::Offcenter, dm::SteinerRule::Circumcenter,
@@ -306,9 +307,9 @@ TEST(Refine, SteinerRulesRankByTriangleCount) {
   // Measured: best ~0.85x the off-centres' count here; a search that does
   // nothing would give 1x.
   EXPECT_LT(static_cast<double>(total[0]), 0.95 * static_cast<double>(total[1]));
-  // Same search, other scoring: counts within 1% (a Best that skipped the
-  // search would be ~15% above Grid).
-  EXPECT_NEAR(static_cast<double>(total[0]), static_cast<double>(total[3]), 0.01 * static_cast<double>(total[3]));
+  // Measured: Best 1.3% above Grid here (4,889 vs 4,825; 1.1% below it on
+  // the corpus); a Best that skipped the search would be ~15% above.
+  EXPECT_NEAR(static_cast<double>(total[0]), static_cast<double>(total[3]), 0.03 * static_cast<double>(total[3]));
 }
 
 // With a size bound the search only runs away from too-large triangles; the

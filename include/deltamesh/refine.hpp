@@ -35,15 +35,17 @@ enum class SteinerRule {
   // the point of the shortest edge's petal (where that edge makes a triangle
   // within the bound) whose insertion leaves the fewest skinny triangles
   // (in the spirit of Erten and Üngör's locally optimal Steiner points),
-  // found by a coarse grid and a pattern search, each point scored on the
-  // few triangles whose circumcircle meets the petal, gathered once. Next to
-  // triangles that break a size bound the off-centre is used as is. Default:
-  // on the corpus 15% (q30) to 20% (q33) fewer triangles than Triangle 1.6,
-  // for about twice the off-centres' time (docs/benchmarks.md).
+  // found by a pattern search from seeds towards the good sides of the
+  // triangles the off-centre leaves skinny (with size bounds: from a coarse
+  // grid), each point scored on the few triangles whose circumcircle meets
+  // the petal, gathered once. Next to triangles that break a size bound the
+  // off-centre is used as is. Default: on the corpus 18% (q30) to 22% (q33)
+  // fewer triangles than Triangle 1.6, for about 1.4-1.9 times the
+  // off-centres' instructions (docs/benchmarks.md).
   Best,
-  // The same search with every candidate scored by the cavity it would make
-  // in the mesh (the default until 2026-12): the same points as Best but for
-  // floating-point ties, twice Best's time. Kept to compare rules.
+  // A coarse grid and a pattern search with every candidate scored by the
+  // cavity it would make in the mesh (the default until 2026-12); with size
+  // bounds Best's search on the mesh. Kept to compare rules.
   Grid,
 };
 

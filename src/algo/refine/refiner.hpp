@@ -184,7 +184,9 @@ class Refiner {
   bool score(TriId t, const Point& c, double min2, int& bad, double& radius2);
   bool gather_petal(TriId t, const Point& centre, double radius);
   bool near_encroachment(const Point& a, const Point& b, const Point& c) const;
-  bool score_local(const Point& c, double min2, int best_bad, double best_r2, int& bad, double& radius2);
+  // skinny: when given, the boundary edges (a, b) that c leaves skinny are appended.
+  bool score_local(const Point& c, double min2, int best_bad, double best_r2, int& bad, double& radius2,
+                   std::vector<std::array<Point, 2>>* skinny = nullptr);
   void prepare_grid();
 
   // ---- encroachment.cpp: encroachment, and where a segment is split -----------
@@ -395,6 +397,7 @@ class Refiner {
   std::array<std::uint32_t, kMaxPetal> petal_in_{};  // per petal_ entry: the candidate stamp when in its cavity
   std::uint32_t petal_stamp_ = 0;
   std::array<std::int32_t, kMaxPetal> petal_stack_{};
+  std::vector<std::array<Point, 2>> skinny_edges_;  // the primary's skinny cavity edges (best_point's seeds)
   std::vector<std::array<double, 2>> grid_cells_;  // best_point's coarse grid (height, shift) within the petal
   double grid_rad_ = -1;                           // the bound grid_cells_ was made for
   double grid_tan_ = 0, grid_half_cot_ = 0, grid_disc_ = 0;  // tan of the bound; the petal's disc per unit |PQ|

@@ -48,6 +48,13 @@ bool beats(int bad, double r2, int best_bad, double best_r2) {
 constexpr double kHeights[] = {0.87, 1.0, 1.15, 1.3, 1.5, 1.75, 2.0};
 constexpr double kShifts[] = {0.0, -0.25, 0.25, -0.5, 0.5, -0.75, 0.75, -1.0, 1.0};
 constexpr std::size_t kFirstRowUnsized = 2;
+// best_point()'s seeds without size bounds: the apex height over a skinny
+// edge AB in units of |AB|, and the fractions of the way to it from the
+// primary. Measured on the reference set (docs/benchmarks.md): fractions
+// 0.4, 0.7, 1 gave 1% more triangles (most such seeds leave the petal),
+// 0.2, 0.4 0.5% more; heights 0.866 (the equilateral apex) and 0.45 more.
+constexpr double kSeedHeight = 0.6;
+constexpr double kSeedSteps[] = {0.15, 0.3, 0.5};
 
 }  // namespace
 
@@ -236,7 +243,8 @@ bool Refiner::near_encroachment(const Point& a, const Point& b, const Point& c) 
 // radius2 starts at the distance to the corners of the bad triangle (the
 // first petal triangle), which are on every cavity's boundary, so that a
 // point too close to them is dropped before its cavity is grown.
-bool Refiner::score_local(const Point& c, double min2, int best_bad, double best_r2, int& bad, double& radius2) {
+bool Refiner::score_local(const Point& c, double min2, int best_bad, double best_r2, int& bad, double& radius2,
+                          std::vector<std::array<Point, 2>>* skinny) {
   // A candidate within a relative kNear of a circumcircle, or of the line
   // of a cavity edge, is degenerate there: rounding (an input scaled by
   // 10^k) decides its side, so it is refused rather than scored.
@@ -289,6 +297,7 @@ bool Refiner::score_local(const Point& c, double min2, int best_bad, double best
         // Skinny, and maybe c on the line of AB (then degenerate).
         if (cross * cross <= kNear * kNear * lab * std::max(la, lb)) return false;
         ++bad;
+        if (skinny) skinny->push_back({A, B});
       }
       if (bad > best_bad || (bad == best_bad && radius2 <= beat_r2)) return false;
     }
@@ -363,8 +372,13 @@ Point Refiner::best_point(TriId t, const Eval& ev, const Point& primary) {
   const double half_cot = grid_half_cot_, rad = grid_disc_;
   if (!gather_petal(t, {M.x + l * half_cot * nx, M.y + l * half_cot * ny}, l * rad)) return primary;
   if (!sized_) {
-    if (!score_local(primary, min2, kFails, 0, primary_bad, primary_r2)) primary_bad = kFails, primary_r2 = 0;
-    if (primary_bad == 0) return primary;
+    skinny_edges_.clear();
+    if (!score_local(primary, min2, kFails, 0, primary_bad, primary_r2, &skinny_edges_)) primary_bad = kFails;
+    // A primary refused (it encroaches a segment, its cavity is not
+    // star-shaped, or it comes too close to a vertex) is kept: decide()
+    // splits the segment or skips. Searching on gave a better point for
+    // one such triangle in five, and more triangles in the end (measured).
+    if (primary_bad == 0 || primary_bad == kFails) return primary;
   }
   int best_bad = primary_bad;
   double best_r2 = primary_r2;
@@ -386,30 +400,54 @@ Point Refiner::best_point(TriId t, const Eval& ev, const Point& primary) {
     if (y >= y_top || y <= 0 || !within_petal(y, s)) return false;
     return try_point(y, s);
   };
-  for (const auto& [y, s] : grid_cells_)
-    if (y < y_top) try_point(y, s);
+  if (sized_) {
+    for (const auto& [y, s] : grid_cells_)
+      if (y < y_top) try_point(y, s);
+  } else {
+    // Seeds instead of the grid: for each cavity edge AB that the primary
+    // leaves skinny, points from the primary towards the apex of a good
+    // triangle on AB (0.6 |AB| from AB's midpoint, on the primary's side),
+    // the direction in which that triangle stops being skinny (after
+    // Erten and Üngör's search of the regions where each new triangle is
+    // good). With the wider pattern search below this scores ~2.5x fewer
+    // candidates than the grid on the corpus, for fewer triangles
+    // (docs/benchmarks.md).
+    for (const auto& [A, B] : skinny_edges_) {
+      const Point X{0.5 * (A.x + B.x) - kSeedHeight * (B.y - A.y), 0.5 * (A.y + B.y) + kSeedHeight * (B.x - A.x)};
+      for (const double a : kSeedSteps) {
+        const double cx = primary.x + a * (X.x - primary.x) - M.x, cy = primary.y + a * (X.y - primary.y) - M.y;
+        consider((cx * nx + cy * ny) / l, (cx * ux + cy * uy) / l);
+      }
+    }
+  }
   // The pattern search of grid_point() on a lattice of its finest steps
-  // around the grid's winner, each lattice point scored at most once (a
+  // around the best point so far, each lattice point scored at most once (a
   // move's neighbourhood overlaps the last one's): steps of 4, 2 and 1 units
-  // of (0.01875, 0.03125) |PQ|, at most 3 moves each, so offsets stay within
-  // 25 units.
+  // of (0.01875, 0.03125) |PQ| after the grid, 8, 4 and 2 after the seeds
+  // (wider, since the seeds are few), at most 3 moves each, so offsets stay
+  // within 42 units.
   constexpr double kUnitY = 0.01875, kUnitS = 0.03125;
-  constexpr int kSide = 64, kMid = 32;
-  std::array<std::uint64_t, kSide> seen{};  // row iy + kMid, bit is + kMid
+  constexpr int kSide = 128, kMid = 64;
+  std::array<std::uint64_t, 2 * kSide> seen{};  // row iy + kMid: two words, bit is + kMid
+  const auto first_visit = [&](int ky, int ks) {
+    const int b = ks + kMid;
+    std::uint64_t& word = seen[static_cast<std::size_t>(2 * (ky + kMid) + (b >> 6))];
+    const std::uint64_t bit = std::uint64_t{1} << (b & 63);
+    if (word & bit) return false;
+    word |= bit;
+    return true;
+  };
   const double y0 = best_y, s0 = best_s;
   int cy = 0, cs = 0;
-  seen[kMid] |= std::uint64_t{1} << kMid;
-  for (int step = 4; step >= 1 && best_bad > 0; step /= 2) {
+  first_visit(0, 0);
+  const int first_step = sized_ ? 4 : 8, last_step = sized_ ? 1 : 2;
+  for (int step = first_step; step >= last_step && best_bad > 0; step /= 2) {
     for (int move = 0; move < 3 && best_bad > 0; ++move) {
       const int py = cy, ps = cs;
       for (int i = -1; i <= 1; ++i)
         for (int j = -1; j <= 1; ++j) {
           const int ky = py + i * step, ks = ps + j * step;
-          std::uint64_t& row = seen[ky + kMid];
-          const std::uint64_t bit = std::uint64_t{1} << (ks + kMid);
-          if (row & bit) continue;
-          row |= bit;
-          if (consider(y0 + ky * kUnitY, s0 + ks * kUnitS)) cy = ky, cs = ks;
+          if (first_visit(ky, ks) && consider(y0 + ky * kUnitY, s0 + ks * kUnitS)) cy = ky, cs = ks;
         }
       if (cy == py && cs == ps) break;
     }
