@@ -292,6 +292,29 @@ TEST(Regress, CdtRepeatedSegmentFollowsItsBentChain) {
       }
 }
 
+// 122 bunched lines crossing near the origin (fuzz_hubs): a segment piece
+// whose cavity Fast cannot retriangulate (a chain with holes) went to the
+// lifting map, whose coordinates spanned more than 2^80, which went back to
+// Fast, without end (a stack overflow under Fast and Lifting).
+TEST(Regress, CdtFallbacksOfFastAndLiftingEnd) {
+  const dm::Pslg g = dm::read_poly(regress("cdt_fast_lifting_fallbacks_call_each_other.poly"));
+  for (const dm::CdtMethod method :
+       {dm::CdtMethod::Fast, dm::CdtMethod::Ct, dm::CdtMethod::Lawson, dm::CdtMethod::Lifting}) {
+    SCOPED_TRACE(std::string(dm::to_string(method)));
+    dm::TriangulateOptions topt;
+    topt.method = method;
+    dm::TriangulateStats st;
+    dm::Mesh m;
+    ASSERT_NO_THROW(m = dm::triangulate(g, topt, &st));
+    dm::CheckOptions co;
+    co.convex_hull = false;
+    co.delaunay = method != dm::CdtMethod::Ct;
+    co.pslg = &g;
+    const dm::CheckReport rep = dm::check(m, co);
+    EXPECT_TRUE(rep.ok()) << rep.summary();
+  }
+}
+
 namespace {
 
 // The regression input above under `method`, carved and with -c.

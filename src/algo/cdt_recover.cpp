@@ -394,7 +394,9 @@ void CdtBuilder::recover_lifting(VertexId a, VertexId b, std::uint32_t seg) {
   // (compare_kinetic_times scales the points by a power of two first): they
   // stay exact when the nonzero coordinates of the cavity span at most a
   // factor 2^80. Flips add no vertices, so checking the cavity's vertices
-  // suffices; beyond that range the piece is done by Fast (a fallback).
+  // suffices; beyond that range the piece is done by Lawson's flips (a
+  // fallback). Not by Fast: Fast gives up on a cavity with holes by calling
+  // this function, which would call it again without end.
   {
     double lo = std::numeric_limits<double>::infinity(), hi = 0.0;
     auto note = [&](const Point& q) {
@@ -412,7 +414,7 @@ void CdtBuilder::recover_lifting(VertexId a, VertexId b, std::uint32_t seg) {
     }
     if (hi > 0.0 && hi > lo * 0x1p80) {
       ++st_.method_fallbacks;
-      recover_fast(a, b, seg);
+      recover_flips(a, b, seg, true);
       return;
     }
   }
