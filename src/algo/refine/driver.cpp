@@ -136,16 +136,13 @@ void Refiner::set_unit() {
 void Refiner::set_bound(double theta) {
   st_.min_angle_deg = theta;
   const double rad = theta * std::numbers::pi / 180.0;
-  sin2_bound_ = theta > 0 ? std::sin(rad) * std::sin(rad) : 0.0;
+  sin2_bound_ = angle_bound_sin2(theta);
   // The off-centre sits where the shortest edge pq subtends the bound
   // angle, i.e. at distance |pq|/2 · cot(theta/2) from pq's midpoint; a
   // little nearer, so that the new triangle clears the bound after rounding.
   off_factor_ = theta > 0 ? 0.5 * kOffcentreShrink / std::tan(rad / 2) : 0.0;
   bound_rad_ = rad;
-  if (lens_) {
-    const double phi = std::max(90.0, 180.0 - 2.0 * theta) * std::numbers::pi / 180.0;
-    lens_cos2_ = std::cos(phi) * std::cos(phi);
-  }
+  if (lens_) lens_cos2_ = lens_angle_cos2(theta);
 }
 
 // Triangle t's area over its area bound (0 without one, or for a ghost).

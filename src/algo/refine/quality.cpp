@@ -30,21 +30,11 @@ double Refiner::area_bound(TriId t, const Point& a, const Point& b, const Point&
 // Quality of triangle abc (counter-clockwise) under t's size bound.
 Eval Refiner::eval(TriId t, const Point& a, const Point& b, const Point& c) const {
   Eval ev;
-  const double l2s[3] = {dist2(a, b), dist2(b, c), dist2(c, a)};
-  const int s = shortest_edge_index(l2s);
-  const double lo = l2s[s], o1 = l2s[(s + 1) % 3], o2 = l2s[(s + 2) % 3];
-  // Twice the area, from an end P of the shortest edge PQ: (Q - P) and
-  // (R - P) lose nothing to cancellation even where P and Q are far smaller
-  // than R (a tiny feature seen from far away), which the differences from
-  // another corner would round away.
-  const Point& P = s == 0 ? a : (s == 1 ? b : c);
-  const Point& Q = s == 0 ? b : (s == 1 ? c : a);
-  const Point& R = s == 0 ? c : (s == 1 ? a : b);
-  const double cross = (Q.x - P.x) * (R.y - P.y) - (Q.y - P.y) * (R.x - P.x);
-  ev.shortest = s;
-  ev.shortest2 = lo;
-  // The smallest angle faces the shortest edge: sin = cross / (|o1| |o2|).
-  const double den = o1 * o2;
+  const ShortestEdgeShape sh = shortest_edge_shape(a, b, c);
+  const double* l2s = sh.l2;
+  const double cross = sh.cross, den = sh.den;
+  ev.shortest = sh.shortest;
+  ev.shortest2 = l2s[sh.shortest];
   ev.skinny = cross * cross < sin2_bound_ * den;
   if (ev.skinny) ev.sin2 = den > 0 ? cross * cross / den : 0.0;
   const double bound = area_bound(t, a, b, c);

@@ -8,11 +8,13 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <numbers>
 #include <utility>
 #include <vector>
 
 #include "algo/refine/queue.hpp"
 #include "algo/refine_parallel.hpp"
+#include "core/angles.hpp"
 #include "deltamesh/mesh.hpp"
 #include "deltamesh/predicates.hpp"
 #include "deltamesh/progress.hpp"
@@ -33,6 +35,55 @@ inline double dist2(const Point& a, const Point& b) {
 // Exact sign of (a - p)·(b - p): negative iff p lies strictly inside the
 // circle with diameter ab (encroachment.cpp).
 double diametral_dot(const Point& a, const Point& b, const Point& p);
+
+// sin^2 of the angle bound theta in degrees (0: no angle criterion).
+inline double angle_bound_sin2(double theta) {
+  const double rad = theta * std::numbers::pi / 180.0;
+  return theta > 0 ? std::sin(rad) * std::sin(rad) : 0.0;
+}
+
+// The diametral lens of angle bound theta (Shewchuk 2002): cos^2 of the
+// smallest angle a subsegment subtends at a point that encroaches upon it.
+inline double lens_angle_cos2(double theta) {
+  const double phi = std::max(90.0, 180.0 - 2.0 * theta) * std::numbers::pi / 180.0;
+  return std::cos(phi) * std::cos(phi);
+}
+
+// Whether p encroaches upon subsegment ab: inside its diametral lens
+// (lens_cos2 from lens_angle_cos2), or without a lens its diametral circle
+// (Ruppert 1995; exact sign).
+inline bool encroaches_upon(const Point& a, const Point& b, const Point& p, bool lens, double lens_cos2) {
+  if (!lens) return diametral_dot(a, b, p) < 0;
+  const double ax = a.x - p.x, ay = a.y - p.y, bx = b.x - p.x, by = b.y - p.y;
+  const double dot = ax * bx + ay * by;
+  if (!(dot < 0)) return false;
+  return dot * dot > lens_cos2 * (ax * ax + ay * ay) * (bx * bx + by * by);
+}
+
+// Triangle abc seen from its shortest edge PQ, which its smallest angle
+// faces: sin^2 of that angle is cross^2 / den.
+struct ShortestEdgeShape {
+  double l2[3];       // squared lengths of ab, bc, ca
+  int shortest = 0;   // index of PQ in l2
+  double cross = 0;   // twice the signed area, from P
+  double den = 0;     // product of the other two squared lengths
+};
+
+inline ShortestEdgeShape shortest_edge_shape(const Point& a, const Point& b, const Point& c) {
+  ShortestEdgeShape sh{{dist2(a, b), dist2(b, c), dist2(c, a)}};
+  const int s = shortest_edge_index(sh.l2);
+  // Twice the area from an end P of the shortest edge PQ: (Q - P) and
+  // (R - P) lose nothing to cancellation even where P and Q are far smaller
+  // than R (a tiny feature seen from far away), which the differences from
+  // another corner would round away.
+  const Point& P = s == 0 ? a : (s == 1 ? b : c);
+  const Point& Q = s == 0 ? b : (s == 1 ? c : a);
+  const Point& R = s == 0 ? c : (s == 1 ? a : b);
+  sh.shortest = s;
+  sh.cross = (Q.x - P.x) * (R.y - P.y) - (Q.y - P.y) * (R.x - P.x);
+  sh.den = sh.l2[(s + 1) % 3] * sh.l2[(s + 2) % 3];
+  return sh;
+}
 
 // Wedges narrower than this get the mid-wedge small-angle rule and mirrored
 // segment splits (wider ones are refined; only the triangle holding the
@@ -194,11 +245,7 @@ class Refiner {
   // (Shewchuk 2002), or its diametral circle (Ruppert 1995; exact sign) with
   // EncroachmentRule::DiametralCircle or -D.
   bool encroaches(const Point& a, const Point& b, const Point& p) const {
-    if (!lens_) return diametral_dot(a, b, p) < 0;
-    const double ax = a.x - p.x, ay = a.y - p.y, bx = b.x - p.x, by = b.y - p.y;
-    const double dot = ax * bx + ay * by;
-    if (!(dot < 0)) return false;
-    return dot * dot > lens_cos2_ * (ax * ax + ay * ay) * (bx * bx + by * by);
+    return encroaches_upon(a, b, p, lens_, lens_cos2_);
   }
   bool encroached(HalfEdgeId e) const;
   void push_if_encroached(HalfEdgeId e, VertexId apex);

@@ -8,11 +8,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <numbers>
 #include <unordered_map>
 
 #include "algo/refine/refiner.hpp"
-#include "core/angles.hpp"
 #include "deltamesh/errors.hpp"
 #include "mesh/canonical.hpp"
 
@@ -39,32 +37,21 @@ struct Criteria {
   bool lens = false;
 
   explicit Criteria(const RefineOptions& o) {
-    const double theta = std::clamp(o.min_angle_deg, 0.0, 60.0), rad = theta * std::numbers::pi / 180.0;
-    sin2_bound = theta > 0 ? std::sin(rad) * std::sin(rad) : 0.0;
+    const double theta = std::clamp(o.min_angle_deg, 0.0, 60.0);
+    sin2_bound = refinement::angle_bound_sin2(theta);
     max_area = o.max_area;
     lens = o.encroachment == EncroachmentRule::DiametralLens && !o.conforming_delaunay;
-    const double phi = std::max(90.0, 180.0 - 2.0 * theta) * std::numbers::pi / 180.0;
-    lens_cos2 = std::cos(phi) * std::cos(phi);
+    lens_cos2 = refinement::lens_angle_cos2(theta);
   }
 
   bool bad(const Mesh& m, TriId t) const {
-    const Point &a = m.point(m.origin(3 * t)), &b = m.point(m.origin(3 * t + 1)), &c = m.point(m.origin(3 * t + 2));
-    const double l2s[3] = {refinement::dist2(a, b), refinement::dist2(b, c), refinement::dist2(c, a)};
-    const int s = shortest_edge_index(l2s);
-    const Point& P = s == 0 ? a : (s == 1 ? b : c);
-    const Point& Q = s == 0 ? b : (s == 1 ? c : a);
-    const Point& R = s == 0 ? c : (s == 1 ? a : b);
-    const double cross = (Q.x - P.x) * (R.y - P.y) - (Q.y - P.y) * (R.x - P.x);
-    const double den = l2s[(s + 1) % 3] * l2s[(s + 2) % 3];
-    return cross * cross < sin2_bound * den || (max_area > 0 && 0.5 * cross > max_area);
+    const refinement::ShortestEdgeShape sh = refinement::shortest_edge_shape(
+        m.point(m.origin(3 * t)), m.point(m.origin(3 * t + 1)), m.point(m.origin(3 * t + 2)));
+    return sh.cross * sh.cross < sin2_bound * sh.den || (max_area > 0 && 0.5 * sh.cross > max_area);
   }
 
   bool encroaches(const Point& a, const Point& b, const Point& p) const {
-    if (!lens) return refinement::diametral_dot(a, b, p) < 0;
-    const double ax = a.x - p.x, ay = a.y - p.y, bx = b.x - p.x, by = b.y - p.y;
-    const double dot = ax * bx + ay * by;
-    if (!(dot < 0)) return false;
-    return dot * dot > lens_cos2 * (ax * ax + ay * ay) * (bx * bx + by * by);
+    return refinement::encroaches_upon(a, b, p, lens, lens_cos2);
   }
 
   // A constrained edge of triangle t whose apex, or the apex across it,
