@@ -156,6 +156,24 @@ int front_band(const dm::Point& c) {
   return d < 0.02 ? 0 : d < 0.05 ? 1 : 2;
 }
 
+// Squared interpolation error of triangle t by the midpoint rule on k x k
+// sub-triangles (a band's share, not the reported L2 error).
+double squared_error(const dm::Mesh& m, const std::vector<double>& u, const Function& fn, dm::TriId t, int k) {
+  const auto v = m.triangle(t);
+  const dm::Point &a = m.point(v[0]), &b = m.point(v[1]), &c = m.point(v[2]);
+  double sq = 0;
+  for (int i = 0; i < k; ++i)
+    for (int j = 0; i + j < k; ++j)
+      for (int up = 0; up < (i + j < k - 1 ? 2 : 1); ++up) {
+        const double s = (i + (up ? 2.0 / 3 : 1.0 / 3)) / k, r = (j + (up ? 2.0 / 3 : 1.0 / 3)) / k;
+        const double x = a.x + s * (b.x - a.x) + r * (c.x - a.x), y = a.y + s * (b.y - a.y) + r * (c.y - a.y);
+        const double d = fn.f(x, y) - ((1 - s - r) * u[v[0]] + s * u[v[1]] + r * u[v[2]]);
+        sq += d * d;
+      }
+  const double area = 0.5 * std::fabs((b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x));
+  return sq * area / (k * k);
+}
+
 // --bands: where the triangles and the squared error of the front's mesh
 // are, and how closely each band's mesh follows its metric.
 void print_bands(const dm::Mesh& m, const Function& fn, const dm::MetricField& field) {
@@ -169,18 +187,7 @@ void print_bands(const dm::Mesh& m, const Function& fn, const dm::MetricField& f
     const dm::Point &a = m.point(v[0]), &b = m.point(v[1]), &c = m.point(v[2]);
     const dm::Point g{(a.x + b.x + c.x) / 3, (a.y + b.y + c.y) / 3};
     const double area = 0.5 * std::fabs((b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x));
-    // Squared error by the midpoint rule on k x k sub-triangles (a bin's
-    // share, not the reported L2 error).
-    double sq = 0;
-    for (int i = 0; i < k; ++i)
-      for (int j = 0; i + j < k; ++j)
-        for (int up = 0; up < (i + j < k - 1 ? 2 : 1); ++up) {
-          const double s = (i + (up ? 2.0 / 3 : 1.0 / 3)) / k, r = (j + (up ? 2.0 / 3 : 1.0 / 3)) / k;
-          const double x = a.x + s * (b.x - a.x) + r * (c.x - a.x), y = a.y + s * (b.y - a.y) + r * (c.y - a.y);
-          const double d = fn.f(x, y) - ((1 - s - r) * u[v[0]] + s * u[v[1]] + r * u[v[2]]);
-          sq += d * d;
-        }
-    sq *= area / (k * k);
+    const double sq = squared_error(m, u, fn, t, k);
     const int band = front_band(g), dec = std::clamp(int(g.x * 10), 0, 9);
     err[dec][band] += sq;
     ++count[dec][band];
@@ -201,17 +208,7 @@ void print_bands(const dm::Mesh& m, const Function& fn, const dm::MetricField& f
       const auto v = m.triangle(t);
       const dm::Point &a = m.point(v[0]), &b = m.point(v[1]), &c = m.point(v[2]);
       const dm::Point g{(a.x + b.x + c.x) / 3, (a.y + b.y + c.y) / 3};
-      const double area = 0.5 * std::fabs((b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x));
-      double sq = 0;
-      for (int i = 0; i < k; ++i)
-        for (int j = 0; i + j < k; ++j)
-          for (int up = 0; up < (i + j < k - 1 ? 2 : 1); ++up) {
-            const double s = (i + (up ? 2.0 / 3 : 1.0 / 3)) / k, r = (j + (up ? 2.0 / 3 : 1.0 / 3)) / k;
-            const double x = a.x + s * (b.x - a.x) + r * (c.x - a.x), y = a.y + s * (b.y - a.y) + r * (c.y - a.y);
-            const double d = fn.f(x, y) - ((1 - s - r) * u[v[0]] + s * u[v[1]] + r * u[v[2]]);
-            sq += d * d;
-          }
-      sq *= area / (k * k);
+      const double sq = squared_error(m, u, fn, t, k);
       const int bi = std::min(12, int(std::fabs(g.y - 0.5 - 0.25 * std::sin(2 * M_PI * g.x)) / 0.004));
       fe[bi] += sq;
       fn_[bi] += 1;

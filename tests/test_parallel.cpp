@@ -25,6 +25,7 @@
 #include "algo/refine_parallel.hpp"
 #include "deltamesh-gen/generators.hpp"
 #include "scale_inputs.hpp"
+#include "support/mesh_extremes.hpp"
 #include "deltamesh/delaunay.hpp"
 #include "deltamesh/pipeline.hpp"
 #include "deltamesh/switches.hpp"
@@ -172,27 +173,9 @@ TEST(ParallelDelaunay, ThreadSwitches) {
   EXPECT_THROW(dm::parse_arguments({"--threads=5000", "in.node"}), dm::UsageError);
 }
 
-// A carved CDT of `g` (no refinement yet).
-dm::Mesh carved(const dm::Pslg& g) {
-  dm::TriangulateOptions o;
-  o.threads = 1;
-  return dm::triangulate(g, o);
-}
+using dm::test::carved_cdt;
 
-double smallest_angle(const dm::Mesh& m) {
-  double worst = 180;
-  for (dm::TriId t = 0; t < m.num_triangle_slots(); ++t) {
-    if (!m.is_real(t)) continue;
-    const auto v = m.triangle(t);
-    for (int i = 0; i < 3; ++i) {
-      const dm::Point a = m.point(v[i]), b = m.point(v[(i + 1) % 3]), c = m.point(v[(i + 2) % 3]);
-      const double ux = b.x - a.x, uy = b.y - a.y, wx = c.x - a.x, wy = c.y - a.y;
-      const double ang = std::atan2(std::abs(ux * wy - uy * wx), ux * wx + uy * wy) * 180 / 3.14159265358979323846;
-      worst = std::min(worst, ang);
-    }
-  }
-  return worst;
-}
+double smallest_angle(const dm::Mesh& m) { return dm::test::extremes(m).smallest_angle_deg; }
 
 struct RefineCase {
   const char* name;
@@ -214,12 +197,12 @@ TEST(ParallelRefine, SameBoundsAsSequential) {
     o.min_angle_deg = c.angle;
     o.max_area = c.area;
     o.threads = 1;
-    dm::Mesh seq = carved(c.pslg);
+    dm::Mesh seq = carved_cdt(c.pslg);
     const dm::RefineStats seq_st = dm::refine(seq, o);
     ASSERT_TRUE(seq_st.complete) << c.name;
     for (unsigned parts : {2u, 3u}) {
       o.threads = parts;
-      dm::Mesh par = carved(c.pslg);
+      dm::Mesh par = carved_cdt(c.pslg);
       const std::optional<dm::RefineStats> st = dm::detail::refine_in_parts(par, o, parts);
       ASSERT_TRUE(st.has_value()) << c.name;
       EXPECT_TRUE(st->complete) << c.name << ": " << st->summary();
@@ -245,10 +228,10 @@ TEST(ParallelRefine, SameMeshRunAfterRun) {
   o.max_area = 2e-4;
   for (unsigned parts : {2u, 4u}) {
     o.threads = parts;
-    dm::Mesh first = carved(g);
+    dm::Mesh first = carved_cdt(g);
     ASSERT_TRUE(dm::detail::refine_in_parts(first, o, parts).has_value());
     for (int run = 0; run < 2; ++run) {
-      dm::Mesh again = carved(g);
+      dm::Mesh again = carved_cdt(g);
       ASSERT_TRUE(dm::detail::refine_in_parts(again, o, parts).has_value());
       EXPECT_TRUE(std::equal(first.triangle_vertices().begin(), first.triangle_vertices().end(),
                              again.triangle_vertices().begin(), again.triangle_vertices().end()))
@@ -270,11 +253,11 @@ TEST(ParallelRefine, ScanThreadsChangeNothing) {
   o.min_angle_deg = 33;
   o.max_area = 2e-4;
   o.threads = 1;
-  dm::Mesh one = carved(g);
+  dm::Mesh one = carved_cdt(g);
   const dm::RefineStats st1 = dm::detail::refine_scanning(one, o, 1);
   ASSERT_GT(st1.below_small_input_angle, 0u);
   for (unsigned threads : {2u, 3u}) {
-    dm::Mesh more = carved(g);
+    dm::Mesh more = carved_cdt(g);
     const dm::RefineStats st = dm::detail::refine_scanning(more, o, threads);
     EXPECT_EQ(st.summary(), st1.summary()) << threads;
     EXPECT_EQ(st.below_bound, st1.below_bound) << threads;
@@ -303,7 +286,7 @@ TEST(ParallelRefine, StatisticsCountTheWholeMesh) {
     SCOPED_TRACE(marker);
     dm::Pslg g = dm::gen::star_polygon(300, 5);
     for (dm::Segment& s : g.segments) s.marker = marker;
-    dm::Mesh m = carved(g);
+    dm::Mesh m = carved_cdt(g);
     dm::RefineOptions o;
     o.min_angle_deg = 33;
     o.max_area = 1e-4;
@@ -356,7 +339,7 @@ TEST(ParallelRefine, PowersOfTenGiveNearlyTheSameMesh) {
     SCOPED_TRACE(c.name);
     auto refined = [&](double s, dm::RefineStats& st) {
       const dm::Pslg g = dm::test::scaled_pslg(c.pslg, s);
-      dm::Mesh m = carved(g);
+      dm::Mesh m = carved_cdt(g);
       dm::RefineOptions o;
       o.min_angle_deg = c.angle;
       o.max_area = c.area * s * s;
@@ -388,7 +371,7 @@ TEST(ParallelRefine, PowersOfTenGiveNearlyTheSameMesh) {
 }
 
 TEST(ParallelRefine, OptionsItCannotKeepAreSequential) {
-  dm::Mesh m = carved(dm::gen::square_with_hole(64));
+  dm::Mesh m = carved_cdt(dm::gen::square_with_hole(64));
   dm::RefineOptions o;
   o.max_area = 1e-4;
   o.threads = 2;

@@ -16,33 +16,14 @@
 #include "deltamesh-gen/generators.hpp"
 #include "deltamesh/triangulate.hpp"
 #include "deltamesh/validate.hpp"
+#include "support/mesh_extremes.hpp"
 
 namespace dm = deltamesh;
 using Strip = dm::detail::LastPassReport::Strip;
 
 namespace {
 
-dm::Mesh carved(const dm::Pslg& g) {
-  dm::TriangulateOptions o;
-  o.threads = 1;
-  return dm::triangulate(g, o);
-}
-
-// The smallest angle of any triangle, and the largest area, measured.
-void measure(const dm::Mesh& m, double& smallest, double& largest) {
-  smallest = 180;
-  largest = 0;
-  for (dm::TriId t = 0; t < m.num_triangle_slots(); ++t) {
-    if (!m.is_real(t)) continue;
-    const auto v = m.triangle(t);
-    for (int i = 0; i < 3; ++i) {
-      const dm::Point a = m.point(v[i]), b = m.point(v[(i + 1) % 3]), c = m.point(v[(i + 2) % 3]);
-      const double ux = b.x - a.x, uy = b.y - a.y, wx = c.x - a.x, wy = c.y - a.y;
-      smallest = std::min(smallest, std::atan2(std::abs(ux * wy - uy * wx), ux * wx + uy * wy) * 180 / 3.14159265358979323846);
-      if (i == 0) largest = std::max(largest, 0.5 * std::abs(ux * wy - uy * wx));
-    }
-  }
-}
+using dm::test::carved_cdt;
 
 void expect_valid(const dm::Mesh& m, const dm::Pslg& g, const std::string& what) {
   dm::CheckOptions co;
@@ -82,9 +63,9 @@ dm::RefineOptions options(const Case& c, unsigned threads) {
 TEST(ParallelRefineStrip, FinishesTheMeshWhereItCan) {
   for (const Case& c : cases()) {
     SCOPED_TRACE(c.name);
-    dm::Mesh seq = carved(c.pslg);
+    dm::Mesh seq = carved_cdt(c.pslg);
     ASSERT_TRUE(dm::refine(seq, options(c, 1)).complete);
-    dm::Mesh par = carved(c.pslg);
+    dm::Mesh par = carved_cdt(c.pslg);
     dm::detail::LastPassReport report;
     const std::optional<dm::RefineStats> st = dm::detail::refine_in_parts(par, options(c, 2), 2, &report);
     ASSERT_TRUE(st.has_value());
@@ -94,8 +75,8 @@ TEST(ParallelRefineStrip, FinishesTheMeshWhereItCan) {
     EXPECT_TRUE(st->complete) << st->summary();
     EXPECT_EQ(st->below_bound, 0u);
     EXPECT_EQ(st->too_large, 0u);
-    double smallest, largest;
-    measure(par, smallest, largest);
+    const dm::test::MeshExtremes x = dm::test::extremes(par);
+    const double smallest = x.smallest_angle_deg, largest = x.largest_area;
     EXPECT_GE(smallest, c.angle - 1e-9);
     EXPECT_LE(largest, c.area * (1 + 1e-12));
     EXPECT_NEAR(double(par.num_triangles()) / double(seq.num_triangles()), 1.0, 0.03)
@@ -110,7 +91,7 @@ TEST(ParallelRefineStrip, FinishesTheMeshWhereItCan) {
 TEST(ParallelRefineStrip, WholePassFinishesARefusedStrip) {
   for (const Case& c : cases()) {
     SCOPED_TRACE(c.name);
-    dm::Mesh m = carved(c.pslg);
+    dm::Mesh m = carved_cdt(c.pslg);
     dm::detail::LastPassReport report;
     report.strip = Strip::Refuse;
     const std::optional<dm::RefineStats> st = dm::detail::refine_in_parts(m, options(c, 2), 2, &report);
@@ -118,8 +99,8 @@ TEST(ParallelRefineStrip, WholePassFinishesARefusedStrip) {
     EXPECT_FALSE(report.strip_kept);
     EXPECT_GT(report.strip_triangles, 0u);
     EXPECT_TRUE(st->complete) << st->summary();
-    double smallest, largest;
-    measure(m, smallest, largest);
+    const dm::test::MeshExtremes x = dm::test::extremes(m);
+    const double smallest = x.smallest_angle_deg, largest = x.largest_area;
     EXPECT_GE(smallest, c.angle - 1e-9);
     EXPECT_LE(largest, c.area * (1 + 1e-12));
     EXPECT_EQ(st->steiner_points, m.num_vertices() - c.pslg.points.size());
@@ -139,7 +120,7 @@ TEST(ParallelRefineStrip, NotWrittenBackChangesNothing) {
     o.min_angle_deg = 33;
     o.max_area = 1e-4;
     o.threads = 2;
-    dm::Mesh tried = carved(g), never = carved(g);
+    dm::Mesh tried = carved_cdt(g), never = carved_cdt(g);
     dm::detail::LastPassReport report, none;
     none.strip = Strip::Never;
     const std::optional<dm::RefineStats> st = dm::detail::refine_in_parts(tried, o, 2, &report);
@@ -162,7 +143,7 @@ TEST(ParallelRefineStrip, SameMeshRunAfterRun) {
   dm::Pslg g = dm::gen::square_with_hole(64);
   for (dm::Segment& s : g.segments) s.marker = 5;
   const Case c{"square-hole q30", g, 30, 1e-4};
-  dm::Mesh first = carved(g);
+  dm::Mesh first = carved_cdt(g);
   dm::detail::LastPassReport report;
   ASSERT_TRUE(dm::detail::refine_in_parts(first, options(c, 2), 2, &report).has_value());
   ASSERT_TRUE(report.strip_kept);
@@ -171,7 +152,7 @@ TEST(ParallelRefineStrip, SameMeshRunAfterRun) {
   for (dm::HalfEdgeId e = 0; e < first.triangle_vertices().size(); ++e)
     EXPECT_EQ(first.edge_marker(e), first.is_constrained(e) ? 5 : 0) << e;
   for (int run = 0; run < 2; ++run) {
-    dm::Mesh again = carved(g);
+    dm::Mesh again = carved_cdt(g);
     ASSERT_TRUE(dm::detail::refine_in_parts(again, options(c, 2), 2).has_value());
     EXPECT_TRUE(std::ranges::equal(first.triangle_vertices(), again.triangle_vertices())) << run;
     ASSERT_EQ(first.num_vertices(), again.num_vertices());
