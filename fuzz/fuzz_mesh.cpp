@@ -221,10 +221,16 @@ void check_refine_stats(const dm::Mesh& mesh, const dm::RefineOptions& ro, const
                        what);
   DELTAMESH_FUZZ_CHECK(rs.too_large_precision <= rs.too_large, what);
   if (rs.complete) {
-    DELTAMESH_FUZZ_CHECK(rs.too_large == 0 && rs.below_budget == 0, what);
+    DELTAMESH_FUZZ_CHECK(rs.too_large == 0 && rs.below_budget == 0 && rs.below_segment_protected == 0 &&
+                             rs.below_precision == 0,
+                         what);
   } else {
-    // Incomplete says why: a budget, or triangles left too large.
-    DELTAMESH_FUZZ_CHECK(rs.budget_exhausted || rs.time_exhausted || rs.too_large > 0, what);
+    // Incomplete says why (RefineStats::complete's one rule): a budget,
+    // triangles left too large, or below the angle bound where -Y/-YY
+    // forbids the split or at the precision of doubles.
+    DELTAMESH_FUZZ_CHECK(rs.budget_exhausted || rs.time_exhausted || rs.too_large > 0 ||
+                             rs.below_segment_protected > 0 || rs.below_precision > 0,
+                         what);
   }
   const double sin_bound = std::sin(ro.min_angle_deg * (1 - 1e-9) * 3.14159265358979323846 / 180);
   std::size_t below = 0;

@@ -418,3 +418,30 @@ TEST(Regress, SubnormalInputWithAHoleMeshesInAFrame) {
       for (dm::VertexId v = 0; v < 3 && hull; ++v) EXPECT_EQ(m.point(v), g.points[v]);
     }
 }
+
+TEST(Regress, RefineKeepsSegmentChainsBesideAFarHullVertex) {
+  GTEST_SKIP() << "bug: segment 8-4 is not a chain of constrained edges after refine() with diametral circles "
+                  "(fuzz6, also on 783679e); see the input's comment";
+  // Exposed: one hull vertex at x = -5.2e64, the rest within 5 of the
+  // origin; refined with diametral circles from the fifth Steiner point on.
+  const dm::Pslg g = dm::read_poly(regress("refine_segment_chain_beside_far_hull_vertex.poly"));
+  dm::TriangulateOptions topt;
+  topt.method = dm::CdtMethod::Fast;
+  topt.strict = true;
+  topt.domain.keep_convex_hull = true;
+  topt.domain.ignore_holes = true;
+  topt.domain.regional_attributes = true;
+  const dm::Mesh base = dm::triangulate(g, topt);
+  ASSERT_TRUE(dm::check(base, {.convex_hull = false, .pslg = &g}).ok());
+  for (const std::size_t budget : {std::size_t{5}, std::size_t{20}}) {
+    SCOPED_TRACE(budget);
+    dm::Mesh m = base;
+    dm::RefineOptions ro;
+    ro.min_angle_deg = 33;
+    ro.encroachment = dm::EncroachmentRule::DiametralCircle;
+    ro.max_steiner = budget;
+    dm::refine(m, ro);
+    const dm::CheckReport rep = dm::check(m, {.convex_hull = false, .pslg = &g});
+    EXPECT_TRUE(rep.ok()) << rep.summary();
+  }
+}
