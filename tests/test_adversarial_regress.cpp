@@ -14,7 +14,9 @@
 
 #include "deltamesh/adapt.hpp"
 #include "deltamesh/errors.hpp"
+#include "deltamesh/pipeline.hpp"
 #include "deltamesh/refine.hpp"
+#include "deltamesh/switches.hpp"
 #include "deltamesh/triangle_io.hpp"
 #include "deltamesh/triangulate.hpp"
 #include "deltamesh/validate.hpp"
@@ -450,5 +452,15 @@ TEST(Regress, RefineKeepsSegmentChainsBesideAFarHullVertex) {
       const dm::CheckReport rep = dm::check(m, {.convex_hull = false, .pslg = &g});
       EXPECT_TRUE(rep.ok()) << rep.summary();
     }
+    // The CLI framed the same way and made the same wrong points; its -C
+    // checks the segments only before carving, so it did not show them.
+    dm::RunInput in;
+    in.pslg = g;
+    const dm::Plan plan =
+        dm::parse_arguments({"-pcOAq33", "--encroachment=circle", "--strict", "-S20", "x"}).plan;
+    const dm::RunResult r = dm::run(plan, std::move(in));
+    EXPECT_EQ(r.stats.refine.steiner_points, 20u);
+    const dm::CheckReport rep = dm::check(r.mesh, {.convex_hull = false, .pslg = &g});
+    EXPECT_TRUE(rep.ok()) << rep.summary();
   }
 }
