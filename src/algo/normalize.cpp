@@ -128,7 +128,7 @@ Frame frame_for(std::span<const Point> points, unsigned threads) {
   if (-e >= lowest)
     f.k = -e;
   else if (lowest >= highest)
-    f.k = highest;  // no room: scale_vertices names a coordinate that underflows
+    f.k = highest;  // no room to spare (if too little, scale_vertices names the coordinate)
   else
     f.k = lowest + (highest - lowest) / 2;
   return f;
