@@ -14,7 +14,9 @@
 
 #include "deltamesh/adapt.hpp"
 #include "deltamesh/errors.hpp"
+#include "deltamesh/pipeline.hpp"
 #include "deltamesh/refine.hpp"
+#include "deltamesh/switches.hpp"
 #include "deltamesh/triangle_io.hpp"
 #include "deltamesh/triangulate.hpp"
 #include "deltamesh/validate.hpp"
@@ -420,28 +422,45 @@ TEST(Regress, SubnormalInputWithAHoleMeshesInAFrame) {
 }
 
 TEST(Regress, RefineKeepsSegmentChainsBesideAFarHullVertex) {
-  GTEST_SKIP() << "bug: segment 8-4 is not a chain of constrained edges after refine() with diametral circles "
-                  "(fuzz6, also on 783679e); see the input's comment";
-  // Exposed: one hull vertex at x = -5.2e64, the rest within 5 of the
-  // origin; refined with diametral circles from the fifth Steiner point on.
-  const dm::Pslg g = dm::read_poly(regress("refine_segment_chain_beside_far_hull_vertex.poly"));
-  dm::TriangulateOptions topt;
-  topt.method = dm::CdtMethod::Fast;
-  topt.strict = true;
-  topt.domain.keep_convex_hull = true;
-  topt.domain.ignore_holes = true;
-  topt.domain.regional_attributes = true;
-  const dm::Mesh base = dm::triangulate(g, topt);
-  ASSERT_TRUE(dm::check(base, {.convex_hull = false, .pslg = &g}).ok());
-  for (const std::size_t budget : {std::size_t{5}, std::size_t{20}}) {
-    SCOPED_TRACE(budget);
-    dm::Mesh m = base;
-    dm::RefineOptions ro;
-    ro.min_angle_deg = 33;
-    ro.encroachment = dm::EncroachmentRule::DiametralCircle;
-    ro.max_steiner = budget;
-    dm::refine(m, ro);
-    const dm::CheckReport rep = dm::check(m, {.convex_hull = false, .pslg = &g});
+  // fuzz_mesh (fuzz6): one or two hull vertices at 5.2e64 or 7.6e109, the
+  // rest within 5 of the origin. refine() frames such a mesh; its frame put
+  // the small coordinates at the predicates' 2^-200, where split points near
+  // zero were rounded to 0, off their segments, from the fifth Steiner point
+  // on. Every input failed at both budgets before the fix.
+  for (const char* name :
+       {"refine_segment_chain_beside_far_hull_vertex.poly", "refine_segment_chain_two_far_hull_vertices.poly",
+        "refine_segment_chain_far_hull_vertex_below.poly", "refine_segment_chain_far_hull_vertex_huge_seed.poly"}) {
+    SCOPED_TRACE(name);
+    const dm::Pslg g = dm::read_poly(regress(name));
+    dm::TriangulateOptions topt;
+    topt.method = dm::CdtMethod::Fast;
+    topt.strict = true;
+    topt.domain.keep_convex_hull = true;
+    topt.domain.ignore_holes = true;
+    topt.domain.regional_attributes = true;
+    const dm::Mesh base = dm::triangulate(g, topt);
+    ASSERT_TRUE(dm::check(base, {.convex_hull = false, .pslg = &g}).ok());
+    for (const std::size_t budget : {std::size_t{5}, std::size_t{20}}) {
+      SCOPED_TRACE(budget);
+      dm::Mesh m = base;
+      dm::RefineOptions ro;
+      ro.min_angle_deg = 33;
+      ro.encroachment = dm::EncroachmentRule::DiametralCircle;
+      ro.max_steiner = budget;
+      const dm::RefineStats st = dm::refine(m, ro);
+      EXPECT_EQ(st.steiner_points, budget);  // (the bug showed from the fifth on)
+      const dm::CheckReport rep = dm::check(m, {.convex_hull = false, .pslg = &g});
+      EXPECT_TRUE(rep.ok()) << rep.summary();
+    }
+    // The CLI framed the same way and made the same wrong points; its -C
+    // checks the segments only before carving, so it did not show them.
+    dm::RunInput in;
+    in.pslg = g;
+    const dm::Plan plan =
+        dm::parse_arguments({"-pcOAq33", "--encroachment=circle", "--strict", "-S20", "x"}).plan;
+    const dm::RunResult r = dm::run(plan, std::move(in));
+    EXPECT_EQ(r.stats.refine.steiner_points, 20u);
+    const dm::CheckReport rep = dm::check(r.mesh, {.convex_hull = false, .pslg = &g});
     EXPECT_TRUE(rep.ok()) << rep.summary();
   }
 }

@@ -116,12 +116,21 @@ Frame frame_for(std::span<const Point> points, unsigned threads) {
   int e = 0, elo = 0;
   std::frexp(m, &e);  // m = g 2^e, g in [1/2, 1)
   std::frexp(lo, &elo);
-  // The largest magnitude in [1/2, 1), where every measure is safe; raised
-  // (up to the predicates' 2^200) only as far as the smallest nonzero one
-  // needs to reach their 2^-200.
+  // The largest magnitude in [1/2, 1), where every measure is safe. When the
+  // smallest nonzero one would then fall below the predicates' 2^-200, the
+  // input goes in the middle of their range instead: raised only until it
+  // reached 2^-200, a refinement's midpoints and circumcentres near zero
+  // (finer than the input's own coordinates) were rounded to 0 there, far
+  // off their segments (tests/regress/refine_segment_chain_beside_far_hull_vertex.poly).
   int highest = 200 - e;  // m 2^highest < 2^200; one more when m is a power of two
   if (std::ldexp(m, highest + 1) <= kMaxCoordinate) ++highest;
-  f.k = std::min(std::max(-e, -199 - elo), highest);
+  const int lowest = -199 - elo;  // lo 2^lowest >= 2^-200
+  if (-e >= lowest)
+    f.k = -e;
+  else if (lowest >= highest)
+    f.k = highest;  // no room to spare (if too little, scale_vertices names the coordinate)
+  else
+    f.k = lowest + (highest - lowest) / 2;
   return f;
 }
 

@@ -2,8 +2,9 @@
 // (internal; docs/robustness.md "Any finite coordinates").
 //
 // Every coordinate is multiplied by 2^k, k chosen so the largest magnitude
-// lies in [1/2, 1) (or higher, up to 2^200, when the smallest nonzero one
-// would otherwise fall below the predicates' 2^-200). Multiplying a double by a power of two is exact unless
+// lies in [1/2, 1) (or, when the smallest nonzero one would then fall below
+// the predicates' 2^-200, so that the smallest and largest are as far from
+// 2^-200 as from 2^200). Multiplying a double by a power of two is exact unless
 // the result leaves the normal range, so the mesh is built on exactly the
 // input scaled, and scaling back returns the input's vertices bit for bit.
 // Lengths scale by 2^k and areas by 2^2k. No translation: adding an offset
