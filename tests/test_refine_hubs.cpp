@@ -477,4 +477,17 @@ TEST(HubsLimit, BunchesOfFourStayWithinBoundedWork) {
   }
 }
 
+// A fuzz_hubs failure of stop 27 (on 783679e too): one hub of 27 equal
+// spokes whose narrowest wedges are 0.37° and 0.71°. At 33° refinement
+// completes, every triangle left below the bound at an input angle, but
+// with 45,892 Steiner points, about 1,400 per input vertex: past the
+// fuzzer's bound for a single hub. Disabled until the work near sub-degree
+// wedges is bounded (docs/robustness.md, the fuzz_hubs row of stop 27).
+TEST(HubsLimit, DISABLED_SubDegreeWedgesAtQ33StayWithinTheFuzzersBudget) {
+  const dm::RefineStats st = refine_fuzz_hub("refine_hub27_subdegree_wedges_q33.poly", 33, 60);
+  SCOPED_TRACE(st.summary());
+  EXPECT_FALSE(st.budget_exhausted);
+  EXPECT_EQ(st.below_bound, st.below_small_input_angle + st.below_precision);
+}
+
 }  // namespace
