@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstddef>
+#include <cstdint>
 #include <random>
 #include <vector>
 
@@ -37,11 +39,17 @@ TEST(SpatialSort, IndexIsABijectionOfTheGrid) {
   }
 }
 
-TEST(SpatialSort, OrderIsAPermutationAndSortedCopyFollowsIt) {
-  std::mt19937_64 rng(3);
+// n points uniform in [-5, 5]^2 from a seeded generator.
+std::vector<Point> random_points(std::uint64_t seed, std::size_t n) {
+  std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> u(-5.0, 5.0);
-  std::vector<Point> pts(50000);
+  std::vector<Point> pts(n);
   for (Point& p : pts) p = {u(rng), u(rng)};
+  return pts;
+}
+
+TEST(SpatialSort, OrderIsAPermutationAndSortedCopyFollowsIt) {
+  const std::vector<Point> pts = random_points(3, 50000);
   std::vector<Point> sorted;
   const std::vector<VertexId> order = detail::hilbert_order(pts, &sorted);
   ASSERT_EQ(order.size(), pts.size());
@@ -54,10 +62,7 @@ TEST(SpatialSort, OrderIsAPermutationAndSortedCopyFollowsIt) {
 TEST(SpatialSort, SubsetReadInPlaceOrdersAsItsCopy) {
   // The slabs of the parallel build sort their points through their input
   // indices; the order must be the one of the same points copied out.
-  std::mt19937_64 rng(5);
-  std::uniform_real_distribution<double> u(-5.0, 5.0);
-  std::vector<Point> pts(60000);
-  for (Point& p : pts) p = {u(rng), u(rng)};
+  const std::vector<Point> pts = random_points(5, 60000);
   std::vector<VertexId> subset;
   std::vector<Point> copy;
   for (VertexId i = 0; i < pts.size(); ++i)
